@@ -1,0 +1,10 @@
+#pragma once
+// Everything a user of smb needs.
+
+#include "smb/box.hpp"
+#include "smb/errors.hpp"
+#include "smb/pair.hpp"
+#include "smb/settings.hpp"
+#include "smb/stats.hpp"
+#include "smb/version.hpp"
+#include "smb/world.hpp"

@@ -1,0 +1,224 @@
+#pragma once
+// The boxes of a world under their caller-chosen ids, in dense slots. Slots are what the SMB
+// lists number (the paper's "AABB n"); ids are what the caller sees. Changes made between two
+// detections are recorded here and folded into the lists by the next detection.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "smb/box.hpp"
+#include "smb/errors.hpp"
+#include "smb/pair.hpp"
+
+namespace smb::detail {
+
+using Slot = std::uint32_t;
+inline constexpr Slot kNoSlot = ~Slot{0};
+
+template <std::floating_point Real, int Dim>
+std::string describe_invalid_box(BoxId id, const Box<Real, Dim>& box) {
+    std::ostringstream out;
+    out.precision(17);
+    out << "box " << id << " is invalid: ";
+    for (int k = 0; k < Dim; ++k) {
+        const char axis = "xyz"[k];
+        if (!std::isfinite(box.min[k]) || !std::isfinite(box.max[k])) {
+            out << axis << " range [" << box.min[k] << ", " << box.max[k]
+                << "] has a NaN or infinite coordinate";
+            return out.str();
+        }
+        if (!(box.min[k] <= box.max[k])) {
+            out << axis << "min " << box.min[k] << " > " << axis << "max " << box.max[k];
+            return out.str();
+        }
+    }
+    return out.str();
+}
+
+template <std::floating_point Real, int Dim>
+class BoxStore {
+public:
+    using box_type = Box<Real, Dim>;
+
+    [[nodiscard]] std::size_t size() const noexcept { return slot_of_id_.size(); }
+    [[nodiscard]] std::size_t slot_count() const noexcept { return boxes_.size(); }
+    [[nodiscard]] bool has_removals() const noexcept { return removed_ != 0; }
+    [[nodiscard]] bool contains(BoxId id) const { return slot_of_id_.contains(id); }
+
+    [[nodiscard]] const box_type& box_at(Slot slot) const noexcept { return boxes_[slot]; }
+    [[nodiscard]] BoxId id_at(Slot slot) const noexcept { return ids_[slot]; }
+    [[nodiscard]] bool alive(Slot slot) const noexcept { return alive_[slot] != 0; }
+    [[nodiscard]] std::span<const box_type> boxes() const noexcept { return boxes_; }
+    [[nodiscard]] std::span<const BoxId> ids() const noexcept { return ids_; }
+
+    [[nodiscard]] Slot slot_of(BoxId id) const {
+        const auto it = slot_of_id_.find(id);
+        if (it == slot_of_id_.end()) throw UnknownIdError(unknown_message(id));
+        return it->second;
+    }
+
+    void insert(std::span<const BoxId> ids, std::span<const box_type> boxes) {
+        require_same_length(ids.size(), boxes.size(), "insert");
+        validate_boxes(ids, boxes);
+        if (ids.size() == 1) {
+            if (contains(ids[0])) throw DuplicateIdError(duplicate_message(ids[0]));
+        } else {
+            std::unordered_set<BoxId> batch;
+            batch.reserve(ids.size());
+            for (const BoxId id : ids) {
+                if (contains(id) || !batch.insert(id).second)
+                    throw DuplicateIdError(duplicate_message(id));
+            }
+        }
+        reserve_for(ids.size());
+        for (std::size_t i = 0; i < ids.size(); ++i) append(ids[i], boxes[i]);
+    }
+
+    void remove(std::span<const BoxId> ids) {
+        std::vector<Slot> slots;
+        slots.reserve(ids.size());
+        for (const BoxId id : ids) slots.push_back(slot_of(id));
+        if (ids.size() > 1) {
+            std::unordered_set<BoxId> batch;
+            batch.reserve(ids.size());
+            for (const BoxId id : ids) {
+                if (!batch.insert(id).second)
+                    throw DuplicateIdError("box " + std::to_string(id) +
+                                           " is named twice in one remove");
+            }
+        }
+        for (std::size_t i = 0; i < ids.size(); ++i) kill(ids[i], slots[i]);
+    }
+
+    void update(std::span<const BoxId> ids, std::span<const box_type> boxes) {
+        require_same_length(ids.size(), boxes.size(), "update");
+        validate_boxes(ids, boxes);
+        std::vector<Slot> slots;
+        slots.reserve(ids.size());
+        for (const BoxId id : ids) slots.push_back(slot_of(id));
+        for (std::size_t i = 0; i < ids.size(); ++i) boxes_[slots[i]] = boxes[i];
+    }
+
+    void assign(std::span<const box_type> boxes) {
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            if (!is_valid(boxes[i]))
+                throw InvalidBoxError(describe_invalid_box(static_cast<BoxId>(i), boxes[i]));
+        }
+        const auto n = static_cast<BoxId>(boxes.size());
+        // Ids at or above n go first, so that the slots they free are compacted together.
+        std::vector<std::pair<BoxId, Slot>> doomed;
+        for (const auto& [id, slot] : slot_of_id_) {
+            if (id >= n) doomed.emplace_back(id, slot);
+        }
+        std::size_t fresh = 0;
+        for (BoxId i = 0; i < n; ++i) fresh += contains(i) ? 0 : 1;
+        reserve_for(fresh);
+        for (const auto& [id, slot] : doomed) kill(id, slot);
+        for (BoxId i = 0; i < n; ++i) {
+            const auto it = slot_of_id_.find(i);
+            if (it != slot_of_id_.end()) {
+                boxes_[it->second] = boxes[i];
+            } else {
+                append(i, boxes[i]);
+            }
+        }
+    }
+
+    void clear() {
+        boxes_.clear();
+        ids_.clear();
+        alive_.clear();
+        slot_of_id_.clear();
+        removed_ = 0;
+    }
+
+    /// Drops the removed slots, keeping the order of the living ones, and returns for every
+    /// old slot its new slot (kNoSlot for a removed one). The SMB lists are renumbered with it,
+    /// as the paper asks whenever N changes (its Section 2.4, remark 3).
+    std::vector<Slot> compact() {
+        std::vector<Slot> new_slot(boxes_.size(), kNoSlot);
+        Slot next = 0;
+        for (Slot s = 0; s < boxes_.size(); ++s) {
+            if (!alive_[s]) continue;
+            new_slot[s] = next;
+            if (next != s) {
+                boxes_[next] = boxes_[s];
+                ids_[next] = ids_[s];
+                slot_of_id_[ids_[next]] = next;
+            }
+            alive_[next] = 1;
+            ++next;
+        }
+        boxes_.resize(next);
+        ids_.resize(next);
+        alive_.resize(next);
+        removed_ = 0;
+        return new_slot;
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        // unordered_map: one node per element (key, value, next pointer, cached hash) and one
+        // pointer per bucket; libstdc++ lays nodes out this way.
+        constexpr std::size_t node_bytes = sizeof(void*) + sizeof(std::pair<const BoxId, Slot>) + sizeof(std::size_t);
+        return boxes_.capacity() * sizeof(box_type) + ids_.capacity() * sizeof(BoxId) +
+               alive_.capacity() + slot_of_id_.bucket_count() * sizeof(void*) +
+               slot_of_id_.size() * node_bytes;
+    }
+
+private:
+    static void require_same_length(std::size_t ids, std::size_t boxes, const char* what) {
+        if (ids != boxes) {
+            throw ArgumentError(std::string(what) + ": " + std::to_string(ids) + " ids but " +
+                                std::to_string(boxes) + " boxes");
+        }
+    }
+    static void validate_boxes(std::span<const BoxId> ids, std::span<const box_type> boxes) {
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            if (!is_valid(boxes[i])) throw InvalidBoxError(describe_invalid_box(ids[i], boxes[i]));
+        }
+    }
+    static std::string unknown_message(BoxId id) {
+        return "box " + std::to_string(id) + " is not in the world";
+    }
+    static std::string duplicate_message(BoxId id) {
+        return "box " + std::to_string(id) + " is already in the world";
+    }
+    void reserve_for(std::size_t extra) {
+        // The deepest SMB list numbers 2^Dim corners per slot in 32 bits.
+        constexpr std::size_t max_slots = (std::size_t{1} << (32 - Dim)) - 1;
+        if (boxes_.size() + extra > max_slots)
+            throw ArgumentError("a " + std::to_string(Dim) + "D world holds at most " +
+                                std::to_string(max_slots) + " boxes (including boxes removed "
+                                "since the last detection)");
+        boxes_.reserve(boxes_.size() + extra);
+        ids_.reserve(ids_.size() + extra);
+        alive_.reserve(alive_.size() + extra);
+        slot_of_id_.reserve(slot_of_id_.size() + extra);
+    }
+    void append(BoxId id, const box_type& box) {
+        const auto slot = static_cast<Slot>(boxes_.size());
+        boxes_.push_back(box);
+        ids_.push_back(id);
+        alive_.push_back(1);
+        slot_of_id_.emplace(id, slot);
+    }
+    void kill(BoxId id, Slot slot) {
+        alive_[slot] = 0;
+        slot_of_id_.erase(id);
+        ++removed_;
+    }
+
+    std::vector<box_type> boxes_;
+    std::vector<BoxId> ids_;
+    std::vector<std::uint8_t> alive_;
+    std::unordered_map<BoxId, Slot> slot_of_id_;
+    std::size_t removed_ = 0;
+};
+
+}  // namespace smb::detail
