@@ -1,0 +1,44 @@
+#pragma once
+// The axial cut of the paper's Section 2.3: a sorted section is cut into segments holding
+// (nearly) equal numbers of items, so that cells follow the boxes, not the space.
+//
+// Deviation from the paper (docs/algorithm.md): a cut is never placed between two items with
+// the same coordinate; it moves forward to the next change of value. Without this rule a flat
+// layer of boxes (all z equal) would be cut through its middle: each box's min and max would
+// land in different segments far apart and every box would look oversized. With it, segment
+// boundaries are true coordinate planes, which the proof of exactness relies on.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "axis_entry.hpp"
+
+namespace smb::detail {
+
+using SegmentId = std::uint32_t;
+
+/// Cuts `section` (sorted) into `segments` segments. Writes, for every item of the section,
+/// `first_segment` + its segment number into `segment_of` (the paper's index array, indexed by
+/// item id), and appends the list offset (relative to `section_offset`) at which each segment
+/// begins to `segment_begin`.
+template <std::floating_point Real>
+void cut_section(std::span<const AxisEntry<Real>> section, std::size_t section_offset,
+                 SegmentId segments, SegmentId first_segment, std::span<SegmentId> segment_of,
+                 std::vector<std::uint32_t>& segment_begin) {
+    const std::size_t n = section.size();
+    std::size_t begin = 0;
+    for (SegmentId s = 0; s < segments; ++s) {
+        std::size_t end = n;
+        if (s + 1 < segments) {
+            end = std::max(begin, (n * (s + 1)) / segments);
+            while (end > 0 && end < n && !(section[end - 1].key < section[end].key)) ++end;
+        }
+        segment_begin.push_back(static_cast<std::uint32_t>(section_offset + begin));
+        for (std::size_t i = begin; i < end; ++i) segment_of[section[i].item] = first_segment + s;
+        begin = end;
+    }
+}
+
+}  // namespace smb::detail
