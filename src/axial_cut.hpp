@@ -8,6 +8,7 @@
 // land in different segments far apart and every box would look oversized. With it, segment
 // boundaries are true coordinate planes, which the proof of exactness relies on.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -19,7 +20,8 @@ namespace smb::detail {
 
 using SegmentId = std::uint32_t;
 
-/// Cuts `section` (sorted) into `segments` segments. Writes, for every item of the section,
+/// Cuts `section` (sorted) into `segments` segments, none of them empty unless the section has
+/// run out of items. Writes, for every item of the section,
 /// `first_segment` + its segment number into `segment_of` (the paper's index array, indexed by
 /// item id), and appends the list offset (relative to `section_offset`) at which each segment
 /// begins to `segment_begin`.
@@ -31,9 +33,13 @@ void cut_section(std::span<const AxisEntry<Real>> section, std::size_t section_o
     std::size_t begin = 0;
     for (SegmentId s = 0; s < segments; ++s) {
         std::size_t end = n;
-        if (s + 1 < segments) {
-            end = std::max(begin, (n * (s + 1)) / segments);
-            while (end > 0 && end < n && !(section[end - 1].key < section[end].key)) ++end;
+        if (s + 1 < segments && begin < n) {
+            // Share what is left evenly among the segments left, so that a long run of equal
+            // values that pushed a cut forward leaves no empty segment before the list's end:
+            // empty segments come last, and a box's two ends are never two segments apart
+            // merely because an empty segment lies between them.
+            end = begin + std::max<std::size_t>(1, (n - begin) / (segments - s));
+            while (end < n && !(section[end - 1].key < section[end].key)) ++end;
         }
         segment_begin.push_back(static_cast<std::uint32_t>(section_offset + begin));
         for (std::size_t i = begin; i < end; ++i) segment_of[section[i].item] = first_segment + s;
