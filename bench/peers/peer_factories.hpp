@@ -1,0 +1,40 @@
+#pragma once
+// One factory per method; each is defined in the file named after it. The optional peers
+// (Bullet, Box2D, CGAL) are compiled only when their packages were found.
+
+#include <memory>
+
+#include "peers/peer.hpp"
+
+namespace smb::bench {
+
+/// smb itself, driven incrementally through smb::World: remove, update, insert, detect.
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_world_peer();
+
+/// Every pair tested, O(N^2): the reference on small scenes.
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_brute_force_peer();
+
+/// "Box pruning": a full re-sort on x every step, then a sweep that tests the other axes.
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_box_pruning_peer();
+
+/// A uniform grid rebuilt from scratch every step (spatial subdivision).
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_uniform_grid_peer();
+
+/// CGAL's box_intersection_d on closed boxes, stateless, every step from scratch.
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_cgal_box_intersection_peer();
+
+/// Bullet's bt32BitAxisSweep3 (incremental sweep and prune), 3D.
+[[nodiscard]] std::unique_ptr<Peer<3>> make_bullet_axis_sweep_peer();
+
+/// Bullet's btDbvtBroadphase (two dynamic AABB trees), 3D.
+[[nodiscard]] std::unique_ptr<Peer<3>> make_bullet_dbvt_peer();
+
+/// Box2D 2.4's b2DynamicTree with a persistent pair list, as b2World drives it, 2D.
+[[nodiscard]] std::unique_ptr<Peer<2>> make_box2d_dynamic_tree_peer();
+
+}  // namespace smb::bench

@@ -1,0 +1,50 @@
+#include "peers/peer_factories.hpp"
+
+namespace smb::bench {
+
+std::vector<PeerInfo> available_peers() {
+    std::vector<PeerInfo> peers = {
+        {"smb", true, true},
+        {"brute_force", true, true},
+        {"box_pruning", true, true},
+        {"uniform_grid", true, true},
+    };
+#if SMB_BENCH_HAVE_CGAL
+    peers.push_back({"cgal_box_intersection", true, true});
+#endif
+#if SMB_BENCH_HAVE_BULLET
+    peers.push_back({"bullet_axis_sweep", false, true});
+    peers.push_back({"bullet_dbvt", false, true});
+#endif
+#if SMB_BENCH_HAVE_BOX2D
+    peers.push_back({"box2d_dynamic_tree", true, false});
+#endif
+    return peers;
+}
+
+template <int Dim>
+std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
+    if (name == "smb") return make_smb_world_peer<Dim>();
+    if (name == "brute_force") return make_brute_force_peer<Dim>();
+    if (name == "box_pruning") return make_box_pruning_peer<Dim>();
+    if (name == "uniform_grid") return make_uniform_grid_peer<Dim>();
+#if SMB_BENCH_HAVE_CGAL
+    if (name == "cgal_box_intersection") return make_cgal_box_intersection_peer<Dim>();
+#endif
+    if constexpr (Dim == 3) {
+#if SMB_BENCH_HAVE_BULLET
+        if (name == "bullet_axis_sweep") return make_bullet_axis_sweep_peer();
+        if (name == "bullet_dbvt") return make_bullet_dbvt_peer();
+#endif
+    } else {
+#if SMB_BENCH_HAVE_BOX2D
+        if (name == "box2d_dynamic_tree") return make_box2d_dynamic_tree_peer();
+#endif
+    }
+    return nullptr;
+}
+
+template std::unique_ptr<Peer<2>> make_peer<2>(std::string_view);
+template std::unique_ptr<Peer<3>> make_peer<3>(std::string_view);
+
+}  // namespace smb::bench

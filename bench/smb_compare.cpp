@@ -1,0 +1,189 @@
+// smb_compare: runs ONE broad-phase method on ONE scene and prints one JSON line with its
+// timings, peak memory and a digest of every step's pair set. One process per method and
+// scene keeps each peak memory its own; scripts/bench-compare.py runs the whole matrix.
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pair_digest.hpp"
+#include "peers/peer.hpp"
+#include "scenes/scene.hpp"
+
+namespace smb::bench {
+namespace {
+
+struct RunOptions {
+    std::string method;
+    SceneSpec scene;
+    std::size_t steps = 10;
+    bool check_overlaps = true;
+};
+
+constexpr const char* usage_text =
+    "usage: smb_compare --method NAME --scene FAMILY --dim 2|3 --boxes N --lambda L\n"
+    "                   [--steps S] [--seed K] [--no-check]\n"
+    "       smb_compare --list\n"
+    "Runs one method on one scene (step 0 plus S steps) and prints a JSON line.\n"
+    "FAMILY: paper, sparse (3D), clustered, mixed. METHOD 'none' runs the scene alone\n"
+    "(the harness's own memory). --no-check skips the untimed exact-overlap check.\n";
+
+std::size_t peak_rss_bytes() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<std::size_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
+}
+
+double median_of(std::vector<double> values) {
+    if (values.empty()) return 0;
+    std::sort(values.begin(), values.end());
+    const std::size_t middle = values.size() / 2;
+    return values.size() % 2 == 1 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
+// Untimed: every reported pair must be an exact closed overlap of the step's boxes.
+template <int Dim>
+void check_exact(const SceneStep<Dim>& step, const std::vector<Pair>& pairs, std::vector<std::uint32_t>& position_of_id) {
+    BoxId largest = 0;
+    for (BoxId id : step.ids) largest = std::max(largest, id);
+    position_of_id.assign(largest + 1, ~std::uint32_t{0});
+    for (std::size_t i = 0; i < step.size(); ++i) position_of_id[step.ids[i]] = static_cast<std::uint32_t>(i);
+    for (const Pair& pair : pairs) {
+        if (pair.b > largest || position_of_id[pair.a] == ~std::uint32_t{0} || position_of_id[pair.b] == ~std::uint32_t{0})
+            throw std::logic_error("pair names a box that is not in the step");
+        if (!overlaps(step.boxes[position_of_id[pair.a]], step.boxes[position_of_id[pair.b]]))
+            throw std::logic_error("pair of boxes that do not overlap");
+    }
+}
+
+template <int Dim>
+int run(const RunOptions& options) {
+    using Clock = std::chrono::steady_clock;
+    auto scene = make_scene<Dim>(options.scene);
+    std::unique_ptr<Peer<Dim>> peer;
+    if (options.method != "none") {
+        peer = make_peer<Dim>(options.method);
+        if (!peer) {
+            std::cerr << "method '" << options.method << "' is not available in " << Dim << "D in this build\n";
+            return 2;
+        }
+    }
+
+    std::vector<Pair> pairs;
+    std::vector<std::uint32_t> position_of_id;
+    std::vector<double> step_seconds;
+    std::vector<std::uint64_t> digests;
+    std::vector<std::size_t> pair_counts;
+    double first_seconds = 0;
+    std::size_t first_boxes = 0, most_boxes = 0, pair_capacity = 0;
+
+    for (std::size_t index = 0; index <= options.steps; ++index) {
+        const SceneStep<Dim>& step = scene->advance();
+        most_boxes = std::max(most_boxes, step.size());
+        if (index == 0) first_boxes = step.size();
+        const auto start = Clock::now();
+        if (peer && index == 0) peer->build(step, pairs);
+        else if (peer) peer->step(step, pairs);
+        const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        if (index == 0) first_seconds = seconds;
+        else step_seconds.push_back(seconds);
+        pair_capacity = std::max(pair_capacity, pairs.capacity());
+        if (options.check_overlaps) check_exact(step, pairs, position_of_id);
+        pair_counts.push_back(pairs.size());
+        digests.push_back(digest_pairs(pairs));
+    }
+
+    std::ostringstream json;
+    json << "{\"method\":\"" << options.method << "\",\"family\":\"" << options.scene.family
+         << "\",\"dim\":" << Dim << ",\"boxes\":" << options.scene.boxes << ",\"lambda\":" << options.scene.update_factor
+         << ",\"seed\":" << options.scene.seed << ",\"steps\":" << options.steps << ",\"first_boxes\":" << first_boxes
+         << ",\"max_boxes\":" << most_boxes << ",\"first_step_s\":" << first_seconds
+         << ",\"median_step_s\":" << median_of(step_seconds) << ",\"min_step_s\":"
+         << (step_seconds.empty() ? 0.0 : *std::min_element(step_seconds.begin(), step_seconds.end()))
+         << ",\"peak_rss_bytes\":" << peak_rss_bytes() << ",\"pair_list_bytes\":" << pair_capacity * sizeof(Pair)
+         << ",\"pairs\":[";
+    for (std::size_t i = 0; i < pair_counts.size(); ++i) json << (i ? "," : "") << pair_counts[i];
+    json << "],\"digests\":[";
+    for (std::size_t i = 0; i < digests.size(); ++i) {
+        char hex[20];
+        std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(digests[i]));
+        json << (i ? "," : "") << '"' << hex << '"';
+    }
+    json << "]}";
+    std::cout << json.str() << std::endl;
+    // Tearing down a million proxies one by one (Bullet's sweep removes each in O(N)) would
+    // only slow the harness; the process ends here and the OS takes the memory back.
+    std::fflush(nullptr);
+    std::_Exit(0);
+}
+
+int list_methods() {
+    for (const PeerInfo& info : available_peers())
+        std::cout << info.name << ',' << (info.runs_2d ? "2d" : "") << (info.runs_2d && info.runs_3d ? "+" : "")
+                  << (info.runs_3d ? "3d" : "") << '\n';
+    return 0;
+}
+
+int main_with_arguments(int argc, char** argv) {
+    RunOptions options;
+    std::map<std::string, std::string> values;
+    for (int i = 1; i < argc; ++i) {
+        const std::string flag = argv[i];
+        if (flag == "--list") return list_methods();
+        if (flag == "--help" || flag == "-h") {
+            std::cout << usage_text;
+            return 0;
+        }
+        if (flag == "--no-check") {
+            options.check_overlaps = false;
+            continue;
+        }
+        if (flag.rfind("--", 0) != 0 || i + 1 >= argc) {
+            std::cerr << "bad argument '" << flag << "'\n" << usage_text;
+            return 2;
+        }
+        values[flag.substr(2)] = argv[++i];
+    }
+    for (const auto& [key, value] : values) {
+        if (key == "method") options.method = value;
+        else if (key == "scene") options.scene.family = value;
+        else if (key == "dim") options.scene.dimension = std::stoi(value);
+        else if (key == "boxes") options.scene.boxes = std::stoull(value);
+        else if (key == "lambda") options.scene.update_factor = std::stod(value);
+        else if (key == "seed") options.scene.seed = std::stoull(value);
+        else if (key == "steps") options.steps = std::stoull(value);
+        else {
+            std::cerr << "unknown option --" << key << '\n' << usage_text;
+            return 2;
+        }
+    }
+    if (options.method.empty()) {
+        std::cerr << usage_text;
+        return 2;
+    }
+    if (options.scene.dimension == 2) return run<2>(options);
+    if (options.scene.dimension == 3) return run<3>(options);
+    std::cerr << "--dim must be 2 or 3\n";
+    return 2;
+}
+
+}  // namespace
+}  // namespace smb::bench
+
+int main(int argc, char** argv) {
+    try {
+        return smb::bench::main_with_arguments(argc, argv);
+    } catch (const std::exception& error) {
+        std::cerr << "smb_compare: " << error.what() << '\n';
+        return 1;
+    }
+}
