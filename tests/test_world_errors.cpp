@@ -390,5 +390,14 @@ TEST(ErrorHierarchy, EverySmbErrorIsAnInvalidArgument) {
     EXPECT_THROW(world.insert(1, Box3d{}), Error);
 }
 
+TEST(SettingsErrors, ZeroCellPopulationOrChunkSizeIsRejected) {
+    WorldSettings no_population;
+    no_population.target_cell_population = 0;
+    EXPECT_THROW(World2d{no_population}, ArgumentError);
+    WorldSettings no_chunk;
+    no_chunk.pair_chunk_size = 0;
+    EXPECT_THROW(World3f{no_chunk}, ArgumentError);
+}
+
 }  // namespace
 }  // namespace smb::test

@@ -1,0 +1,164 @@
+// Checks World::bytes_held() and DetectStats::bytes_held against the heap bytes the world
+// really holds, measured by replacing the global allocation functions of this test program.
+// Agreement is asked within kRelativeTolerance of the measured bytes plus kSlackBytes.
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <new>
+#include <vector>
+
+#include "reference/random_boxes.hpp"
+#include "reference/world_types.hpp"
+#include "smb/world.hpp"
+
+namespace {
+
+// Every allocation carries a header with its requested size, so that frees can be counted
+// without relying on malloc_usable_size (which includes the allocator's rounding).
+constexpr std::size_t kHeader = 64;  // covers every alignment the program asks for
+std::atomic<std::int64_t> g_live_bytes{0};
+
+void* counted_allocate(std::size_t size, std::size_t alignment) {
+    const std::size_t header = alignment > kHeader ? alignment : kHeader;
+    void* raw = std::aligned_alloc(header, ((size + header + header - 1) / header) * header);
+    if (raw == nullptr) throw std::bad_alloc();
+    auto* bytes = static_cast<unsigned char*>(raw);
+    auto* user = bytes + header;
+    reinterpret_cast<std::size_t*>(user)[-1] = size;
+    reinterpret_cast<std::size_t*>(user)[-2] = header;
+    g_live_bytes.fetch_add(static_cast<std::int64_t>(size), std::memory_order_relaxed);
+    return user;
+}
+
+void counted_free(void* pointer) noexcept {
+    if (pointer == nullptr) return;
+    auto* user = static_cast<unsigned char*>(pointer);
+    const std::size_t size = reinterpret_cast<std::size_t*>(user)[-1];
+    const std::size_t header = reinterpret_cast<std::size_t*>(user)[-2];
+    g_live_bytes.fetch_sub(static_cast<std::int64_t>(size), std::memory_order_relaxed);
+    std::free(user - header);
+}
+
+std::int64_t live_bytes() { return g_live_bytes.load(std::memory_order_relaxed); }
+
+}  // namespace
+
+void* operator new(std::size_t size) { return counted_allocate(size, alignof(std::max_align_t)); }
+void* operator new[](std::size_t size) { return counted_allocate(size, alignof(std::max_align_t)); }
+void* operator new(std::size_t size, std::align_val_t alignment) {
+    return counted_allocate(size, static_cast<std::size_t>(alignment));
+}
+void* operator new[](std::size_t size, std::align_val_t alignment) {
+    return counted_allocate(size, static_cast<std::size_t>(alignment));
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+    try {
+        return counted_allocate(size, alignof(std::max_align_t));
+    } catch (...) {
+        return nullptr;
+    }
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+    try {
+        return counted_allocate(size, alignof(std::max_align_t));
+    } catch (...) {
+        return nullptr;
+    }
+}
+void operator delete(void* pointer) noexcept { counted_free(pointer); }
+void operator delete[](void* pointer) noexcept { counted_free(pointer); }
+void operator delete(void* pointer, std::size_t) noexcept { counted_free(pointer); }
+void operator delete[](void* pointer, std::size_t) noexcept { counted_free(pointer); }
+void operator delete(void* pointer, std::align_val_t) noexcept { counted_free(pointer); }
+void operator delete[](void* pointer, std::align_val_t) noexcept { counted_free(pointer); }
+void operator delete(void* pointer, std::size_t, std::align_val_t) noexcept { counted_free(pointer); }
+void operator delete[](void* pointer, std::size_t, std::align_val_t) noexcept { counted_free(pointer); }
+void operator delete(void* pointer, const std::nothrow_t&) noexcept { counted_free(pointer); }
+void operator delete[](void* pointer, const std::nothrow_t&) noexcept { counted_free(pointer); }
+
+namespace smb::test {
+namespace {
+
+constexpr double kRelativeTolerance = 0.10;
+constexpr std::int64_t kSlackBytes = 16 * 1024;
+
+template <typename WorldType>
+class MemoryAccountingTest : public ::testing::Test {
+protected:
+    using Real = typename WorldType::real_type;
+    static constexpr int Dim = WorldType::dimension;
+    using BoxT = Box<Real, Dim>;
+
+    /// Compares the world's own account with the bytes allocated since `baseline` and still
+    /// live: everything the test itself holds was allocated before the baseline.
+    static void expect_agreement(const char* when, std::size_t reported, std::int64_t baseline,
+                                 std::size_t boxes) {
+        const std::int64_t measured = live_bytes() - baseline;
+        const auto claimed = static_cast<std::int64_t>(reported);
+        const auto allowed =
+            static_cast<std::int64_t>(kRelativeTolerance * static_cast<double>(measured)) +
+            kSlackBytes;
+        std::printf("%-34s boxes %7zu  measured %10lld B (%6.1f B/box)  reported %10lld B\n",
+                    when, boxes, static_cast<long long>(measured),
+                    boxes ? static_cast<double>(measured) / static_cast<double>(boxes) : 0.0,
+                    static_cast<long long>(claimed));
+        EXPECT_LE(claimed - measured, allowed) << when << ": reports more than it holds";
+        EXPECT_LE(measured - claimed, allowed) << when << ": holds more than it reports";
+    }
+
+    void run(std::size_t count) {
+        Random random(777);
+        // Boxes with a side of 1..2 at density about 0.3, as in the paper's Section 4.1.
+        const double space = Dim == 2 ? std::sqrt(static_cast<double>(count) * 2.25 / 0.3)
+                                      : std::cbrt(static_cast<double>(count) * 3.375 / 0.3);
+        std::vector<BoxId> ids(count);
+        std::vector<BoxT> boxes(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            ids[i] = 3 * i + 1;
+            boxes[i] = random_box<Real, Dim>(random, 0, space, 1.0, 2.0);
+        }
+        const std::vector<BoxId> half(ids.begin(),
+                                      ids.begin() + static_cast<std::ptrdiff_t>(count / 2));
+        std::vector<Pair> pairs;
+        pairs.reserve(count * 8);
+        const auto pairs_bytes = static_cast<std::int64_t>(pairs.capacity() * sizeof(Pair));
+
+        const std::int64_t baseline = live_bytes();
+        auto world = std::make_unique<WorldType>();
+        world->insert(ids, boxes);
+        expect_agreement("after insert", world->bytes_held(), baseline, world->size());
+        for (int step = 0; step < 4; ++step) {
+            for (auto& box : boxes) box = perturbed(random, box, 1e-3 * space, 1e-3);
+            world->update(ids, boxes);
+            const DetectStats stats = world->detect(pairs);
+            ASSERT_LE(pairs.capacity() * sizeof(Pair), static_cast<std::size_t>(pairs_bytes))
+                << "the pair list outgrew its reservation; raise it";
+            expect_agreement("after detect (stats)", stats.bytes_held, baseline, world->size());
+            expect_agreement("after detect (bytes_held)", world->bytes_held(), baseline,
+                             world->size());
+        }
+        // Remove half: the world may keep its capacity, but must still account for it.
+        world->remove(half);
+        const DetectStats stats = world->detect(pairs);
+        expect_agreement("after removing half", stats.bytes_held, baseline, world->size());
+        world->clear();
+        expect_agreement("after clear", world->bytes_held(), baseline, world->size());
+        world.reset();
+        // GoogleTest keeps the text of any failure above on the heap, hence the slack.
+        EXPECT_LE(live_bytes() - baseline, kSlackBytes) << "the destroyed world left bytes behind";
+    }
+};
+
+TYPED_TEST_SUITE(MemoryAccountingTest, WorldTypes, WorldTypeNames);
+
+TYPED_TEST(MemoryAccountingTest, BytesHeldMatchesTheHeap) { this->run(scaled(100000)); }
+
+}  // namespace
+}  // namespace smb::test
