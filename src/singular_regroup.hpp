@@ -31,6 +31,13 @@ struct RegroupScratch {
     std::vector<AxisEntry<Real>> stacks;           // the stack array, grouped by section
     std::vector<std::uint32_t> stack_begin;        // stack pointers
 
+    template <class Trim>
+    void trim(Trim&& trim_buffer) {
+        trim_buffer(singular);
+        trim_buffer(singular_section);
+        trim_buffer(stacks);
+    }
+
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return singular.capacity() * sizeof(AxisEntry<Real>) +
                singular_section.capacity() * sizeof(SegmentId) +

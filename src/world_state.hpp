@@ -64,7 +64,6 @@ private:
     /// 3D) and the per-step arrays derived from it.
     struct Level {
         std::vector<Entry> list;                  // grouped by section, sorted within each
-        std::vector<Entry> spare;                 // second buffer of the regrouping
         std::vector<std::uint32_t> section_begin; // offsets of the sections in `list`
         std::vector<std::uint32_t> segment_begin; // offsets of the segments (after the cut)
         std::vector<SegmentId> segment_of;        // index array: segment of every item id
@@ -80,6 +79,7 @@ private:
     DisWork sort_level(Level& level);
     void cut_level(Level& level);
     void find_oversized();
+    void release_oversized_scratch();
     void build_cell_lists();
     template <class Report>
     void check_cells(Report& report);
@@ -93,6 +93,7 @@ private:
     std::array<std::vector<Item>, Dim - 1> cell_lists_;  // the paper's Y2 (2D); Y2, Z2 (3D)
     std::vector<std::uint32_t> cell_cursor_;
     std::vector<Entry> arrivals_;
+    std::vector<Entry> spare_;  // second buffer of the regrouping, shared by the levels
     std::vector<std::uint8_t> oversized_;
     std::size_t oversized_count_ = 0;
     RegroupScratch<Real> regroup_;
@@ -143,11 +144,13 @@ DetectStats WorldState<Real, Dim>::detect(const PairSink& sink) {
             if (depth == 0) {
                 // Step 1 of Section 3: the first list is one section; arrivals are merged in
                 // sorted, then DIS restores the order that the motion disturbed.
-                std::sort(arrivals_.begin(), arrivals_.end(), entry_less<Real>);
-                level.spare.resize(level.list.size() + arrivals_.size());
-                std::merge(level.list.begin(), level.list.end(), arrivals_.begin(), arrivals_.end(),
-                           level.spare.begin(), entry_less<Real>);
-                level.list.swap(level.spare);
+                if (!arrivals_.empty()) {
+                    std::sort(arrivals_.begin(), arrivals_.end(), entry_less<Real>);
+                    spare_.resize(level.list.size() + arrivals_.size());
+                    std::merge(level.list.begin(), level.list.end(), arrivals_.begin(),
+                               arrivals_.end(), spare_.begin(), entry_less<Real>);
+                    level.list.swap(spare_);
+                }
                 level.section_begin.assign({0U, static_cast<std::uint32_t>(level.list.size())});
             } else {
                 // Steps 4-7 of Section 3: regroup by the parent level's cut.
@@ -155,8 +158,8 @@ DetectStats WorldState<Real, Dim>::detect(const PairSink& sink) {
                 std::vector<std::uint32_t> new_begin(parent.segment_begin.size());
                 for (std::size_t j = 0; j < new_begin.size(); ++j) new_begin[j] = 2 * parent.segment_begin[j];
                 regroup_by_parent_segment<Real>(level.list, level.section_begin, arrivals_,
-                                                parent.segment_of, new_begin, level.spare, regroup_);
-                level.list.swap(level.spare);
+                                                parent.segment_of, new_begin, spare_, regroup_);
+                level.list.swap(spare_);
                 level.section_begin.swap(new_begin);
             }
             SMB_ASSERT(level.list.size() == (n << (depth + 1)), "a list lost or gained items");
@@ -168,6 +171,7 @@ DetectStats WorldState<Real, Dim>::detect(const PairSink& sink) {
             cut_level(level);
         }
         listed_ = n;
+        release_oversized_scratch();
         find_oversized();
         build_cell_lists();
         stats.sort_seconds = sorting;
@@ -298,6 +302,24 @@ void WorldState<Real, Dim>::cut_level(Level& level) {
     level.segment_begin.push_back(static_cast<std::uint32_t>(level.list.size()));
 }
 
+/// The first detection (and any step that inserts or moves many boxes) fills the arrival and
+/// stack buffers with up to 2^Dim items per box. Keeping that capacity would double the memory
+/// of a world whose later steps change little, so a buffer much larger than this step needed is
+/// given back; steady steps that need about the same amount each time keep theirs.
+template <std::floating_point Real, int Dim>
+void WorldState<Real, Dim>::release_oversized_scratch() {
+    auto trim = [](auto& buffer) {
+        if (buffer.capacity() > 64 * 1024 && buffer.capacity() > 4 * buffer.size()) {
+            std::remove_reference_t<decltype(buffer)> smaller;
+            smaller.reserve(2 * buffer.size());
+            smaller.assign(buffer.begin(), buffer.end());
+            buffer.swap(smaller);
+        }
+    };
+    trim(arrivals_);
+    regroup_.trim(trim);
+}
+
 /// A box is oversized when, on some level and for some of its faces, its min and max fall more
 /// than one segment apart: the segment between would not hold it (the paper's Fig. 5).
 template <std::floating_point Real, int Dim>
@@ -425,12 +447,13 @@ template <std::floating_point Real, int Dim>
 std::size_t WorldState<Real, Dim>::bytes_held() const noexcept {
     std::size_t bytes = store_.bytes_held();
     for (const Level& level : levels_) {
-        bytes += (level.list.capacity() + level.spare.capacity()) * sizeof(Entry);
+        bytes += level.list.capacity() * sizeof(Entry);
         bytes += (level.section_begin.capacity() + level.segment_begin.capacity()) * sizeof(std::uint32_t);
         bytes += level.segment_of.capacity() * sizeof(SegmentId);
     }
     for (const auto& cell_list : cell_lists_) bytes += cell_list.capacity() * sizeof(Item);
-    bytes += cell_cursor_.capacity() * sizeof(std::uint32_t) + arrivals_.capacity() * sizeof(Entry);
+    bytes += cell_cursor_.capacity() * sizeof(std::uint32_t);
+    bytes += (arrivals_.capacity() + spare_.capacity()) * sizeof(Entry);
     bytes += oversized_.capacity() + regroup_.bytes_held() + mask_.bytes_held() + map_.bytes_held();
     bytes += checker_.bytes_held() + oversized_sweep_.bytes_held() + chunk_.capacity() * sizeof(Pair);
     return bytes;
