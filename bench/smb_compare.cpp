@@ -2,13 +2,16 @@
 // timings, peak memory and a digest of every step's pair set. One process per method and
 // scene keeps each peak memory its own; scripts/bench-compare.py runs the whole matrix.
 
+#include <malloc.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -41,6 +44,36 @@ std::size_t peak_rss_bytes() {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     return static_cast<std::size_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
+}
+
+std::size_t resident_bytes() {
+    std::ifstream statm("/proc/self/statm");
+    std::size_t total_pages = 0, resident_pages = 0;
+    statm >> total_pages >> resident_pages;
+    return resident_pages * static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+}
+
+// Peak resident bytes since the last reset_resident_peak(), from VmHWM (Linux).
+std::size_t resident_peak_bytes() {
+    std::ifstream status("/proc/self/status");
+    std::string key;
+    while (status >> key) {
+        if (key == "VmHWM:") {
+            std::size_t kib = 0;
+            status >> kib;
+            return kib * 1024;
+        }
+        status.ignore(1 << 12, '\n');
+    }
+    return peak_rss_bytes();
+}
+
+// Writing 5 to clear_refs resets VmHWM to the current resident size (Linux 4.0+), so that
+// the peak of the method's own run is not hidden by freed memory of the scene's set-up.
+void reset_resident_peak() {
+    malloc_trim(0);
+    std::ofstream clear_refs("/proc/self/clear_refs");
+    clear_refs << "5" << std::endl;
 }
 
 double median_of(std::vector<double> values) {
@@ -84,12 +117,16 @@ int run(const RunOptions& options) {
     std::vector<std::uint64_t> digests;
     std::vector<std::size_t> pair_counts;
     double first_seconds = 0;
-    std::size_t first_boxes = 0, most_boxes = 0, pair_capacity = 0;
+    std::size_t first_boxes = 0, most_boxes = 0, pair_capacity = 0, resident_before = 0;
 
     for (std::size_t index = 0; index <= options.steps; ++index) {
         const SceneStep<Dim>& step = scene->advance();
         most_boxes = std::max(most_boxes, step.size());
-        if (index == 0) first_boxes = step.size();
+        if (index == 0) {
+            first_boxes = step.size();
+            reset_resident_peak();
+            resident_before = resident_bytes();
+        }
         const auto start = Clock::now();
         if (peer && index == 0) peer->build(step, pairs);
         else if (peer) peer->step(step, pairs);
@@ -109,7 +146,8 @@ int run(const RunOptions& options) {
          << ",\"max_boxes\":" << most_boxes << ",\"first_step_s\":" << first_seconds
          << ",\"median_step_s\":" << median_of(step_seconds) << ",\"min_step_s\":"
          << (step_seconds.empty() ? 0.0 : *std::min_element(step_seconds.begin(), step_seconds.end()))
-         << ",\"peak_rss_bytes\":" << peak_rss_bytes() << ",\"pair_list_bytes\":" << pair_capacity * sizeof(Pair)
+         << ",\"peak_rss_bytes\":" << peak_rss_bytes() << ",\"resident_before_bytes\":" << resident_before
+         << ",\"resident_peak_bytes\":" << resident_peak_bytes() << ",\"pair_list_bytes\":" << pair_capacity * sizeof(Pair)
          << ",\"pairs\":[";
     for (std::size_t i = 0; i < pair_counts.size(); ++i) json << (i ? "," : "") << pair_counts[i];
     json << "],\"digests\":[";

@@ -15,6 +15,10 @@ packages=(
   libfmt-dev
   python3-numpy
   python3-matplotlib
+  # peers of the side-by-side benchmark (bench/peers/); optional, the build skips any missing
+  libbullet-dev
+  libbox2d-dev
+  libcgal-dev
 )
 
 missing=()
