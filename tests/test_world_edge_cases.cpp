@@ -261,6 +261,72 @@ TYPED_TEST(WorldEdgeCaseTest, NegativeZeroTouchesPositiveZero) {
     this->check("+0 against -0, point at -0");
 }
 
+TYPED_TEST(WorldEdgeCaseTest, DegenerateBoxesTouchingAtACorner) {
+    // The smallest scene found where a cut between tied coordinates lost a pair: boxes 1 and
+    // 3 meet only at the point (1, 1, ...).
+    WorldSettings settings;
+    settings.target_cell_population = 1;
+    World<typename TestFixture::Real, TestFixture::Dim> world(settings);
+    ReferenceWorld<typename TestFixture::Real, TestFixture::Dim> reference;
+    const double corners[4][4] = {{1, 1, 0, 0}, {1, 1, 0, 1}, {0, 0, 0, 1}, {0, 1, 1, 1}};
+    for (BoxId id = 0; id < 4; ++id) {
+        typename TestFixture::Point lo{};
+        typename TestFixture::Point hi{};
+        lo[0] = corners[id][0];
+        hi[0] = corners[id][1];
+        lo[1] = corners[id][2];
+        hi[1] = corners[id][3];
+        const auto box = this->from_corners(lo, hi);
+        world.insert(id, box);
+        reference.insert(id, box);
+    }
+    EXPECT_TRUE(detects_like(world, reference));
+}
+
+TYPED_TEST(WorldEdgeCaseTest, FewDistinctCoordinateValues) {
+    // Every coordinate is one of a handful of integers: ties everywhere, on every axis, and
+    // many boxes of zero extent. Driven over steps that redraw some boxes, with tiny and
+    // ordinary cell populations.
+    for (const std::size_t population : {std::size_t{1}, std::size_t{2}, std::size_t{24}}) {
+        for (const std::size_t count : {std::size_t{6}, std::size_t{20}, std::size_t{60}, scaled(400)}) {
+            for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+                SCOPED_TRACE(::testing::Message() << "population " << population << ", count "
+                                                  << count << ", seed " << seed);
+                Random random(seed);
+                const std::size_t values = 2 + seed % 3;
+                const auto draw = [&random, values] {
+                    typename TestFixture::Point lo{};
+                    typename TestFixture::Point hi{};
+                    for (int k = 0; k < TestFixture::Dim; ++k) {
+                        const auto a = static_cast<double>(uniform_index(random, values));
+                        const auto b = static_cast<double>(uniform_index(random, values));
+                        lo[k] = std::min(a, b);
+                        hi[k] = std::max(a, b);
+                    }
+                    return TestFixture::from_corners(lo, hi);
+                };
+                WorldSettings settings;
+                settings.target_cell_population = population;
+                World<typename TestFixture::Real, TestFixture::Dim> world(settings);
+                ReferenceWorld<typename TestFixture::Real, TestFixture::Dim> reference;
+                for (BoxId id = 0; id < count; ++id) {
+                    const auto box = draw();
+                    world.insert(id, box);
+                    reference.insert(id, box);
+                }
+                for (int step = 0; step < 4 && !this->HasFailure(); ++step) {
+                    ASSERT_TRUE(detects_like(world, reference)) << "step " << step;
+                    for (BoxId id = 0; id < count; id += 3) {
+                        const auto box = draw();
+                        world.update(id, box);
+                        reference.update(id, box);
+                    }
+                }
+            }
+        }
+    }
+}
+
 TYPED_TEST(WorldEdgeCaseTest, AllBoxesOnOnePlane) {
     Random random(1201);
     for (BoxId id = 0; id < scaled(600); ++id) {
