@@ -34,6 +34,7 @@ public:
         bits_[box] = static_cast<std::uint8_t>(cleared | (1U << level));
     }
 
+    [[nodiscard]] std::uint8_t bits(std::uint32_t box) const noexcept { return bits_[box]; }
     [[nodiscard]] std::size_t bytes_held() const noexcept { return bits_.capacity(); }
 
 private:

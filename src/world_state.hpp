@@ -17,6 +17,7 @@
 #include "axis_entry.hpp"
 #include "box_store.hpp"
 #include "cell_check.hpp"
+#include "cell_lists.hpp"
 #include "global_local_map.hpp"
 #include "mask_array.hpp"
 #include "oversized_sweep.hpp"
@@ -347,24 +348,14 @@ void WorldState<Real, Dim>::find_oversized() {
     }
 }
 
-/// Steps 9-11 of Section 3: every upper list is regrouped by cell. Each corner lies in exactly
-/// one cell (index array: the deepest level's segment_of), and scanning an upper list in its
-/// sorted order appends each corner to its cell's part, so every part comes out sorted.
+/// Steps 9-11 of Section 3 (cell_lists.hpp): the paper's Y2 in 2D; Y2 and Z2 in 3D.
 template <std::floating_point Real, int Dim>
 void WorldState<Real, Dim>::build_cell_lists() {
     const Level& deepest = levels_[Dim - 1];
-    const std::size_t cells = deepest.segment_begin.size() - 1;
     for (int depth = 0; depth + 1 < Dim; ++depth) {
-        auto& cell_list = cell_lists_[static_cast<std::size_t>(depth)];
-        cell_list.resize(deepest.list.size());
-        cell_cursor_.assign(deepest.segment_begin.begin(), deepest.segment_begin.begin() + static_cast<std::ptrdiff_t>(cells));
-        const int corners_shift = Dim - 1 - depth;
-        for (const Entry& entry : levels_[depth].list) {
-            const Item first = entry.item << corners_shift;
-            for (Item corner = first; corner < first + (Item{1} << corners_shift); ++corner) {
-                cell_list[cell_cursor_[deepest.segment_of[corner]]++] = corner;
-            }
-        }
+        regroup_by_cell(ItemsOf<Real>(levels_[depth].list), Dim - 1 - depth, deepest.segment_of,
+                        deepest.segment_begin, cell_lists_[static_cast<std::size_t>(depth)],
+                        cell_cursor_);
     }
 }
 
