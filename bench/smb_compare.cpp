@@ -156,7 +156,12 @@ int run(const RunOptions& options) {
         std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(digests[i]));
         json << (i ? "," : "") << '"' << hex << '"';
     }
-    json << "]}";
+    json << "]";
+    if (peer) {
+        const std::string details = peer->details_json();
+        if (!details.empty()) json << ',' << details;
+    }
+    json << "}";
     std::cout << json.str() << std::endl;
     // Tearing down a million proxies one by one (Bullet's sweep removes each in O(N)) would
     // only slow the harness; the process ends here and the OS takes the memory back.

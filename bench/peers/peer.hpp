@@ -25,6 +25,9 @@ public:
     /// A later step: boxes in step.removed_ids are gone, those before step.first_inserted moved,
     /// the rest are new. Same output contract as build().
     virtual void step(const SceneStep<Dim>& step, std::vector<Pair>& pairs) = 0;
+
+    /// Method-specific facts for the report, as JSON members ("key":value,...), or empty.
+    [[nodiscard]] virtual std::string details_json() const { return {}; }
 };
 
 /// A method that keeps nothing between steps: it only sees the complete box set.

@@ -1,5 +1,7 @@
 #include "peers/peer_factories.hpp"
 
+#include <sstream>
+
 #include "smb/world.hpp"
 
 namespace smb::bench {
@@ -11,6 +13,7 @@ public:
     void build(const SceneStep<Dim>& step, std::vector<Pair>& pairs) override {
         world_.insert(step.ids, step.boxes);
         world_.detect(pairs);
+        phases_ = {};
     }
 
     void step(const SceneStep<Dim>& step, std::vector<Pair>& pairs) override {
@@ -18,11 +21,36 @@ public:
         world_.update(step.ids.first(step.first_inserted), step.boxes.first(step.first_inserted));
         if (step.inserted_count() > 0)
             world_.insert(step.ids.subspan(step.first_inserted), step.boxes.subspan(step.first_inserted));
-        world_.detect(pairs);
+        const DetectStats& stats = world_.detect(pairs);
+        ++steps_;
+        phases_.update_seconds += stats.update_seconds;
+        phases_.sort_seconds += stats.sort_seconds;
+        phases_.cut_regroup_seconds += stats.cut_regroup_seconds;
+        phases_.check_seconds += stats.check_seconds;
+        phases_.total_seconds += stats.total_seconds;
+        phases_.sort_moves += stats.sort_moves;
+        phases_.cells = stats.cells;
+        phases_.oversized_boxes = stats.oversized_boxes;
+        phases_.bytes_held = stats.bytes_held;
+    }
+
+    // Where detect() spends its time, averaged over the steps after the first.
+    [[nodiscard]] std::string details_json() const override {
+        if (steps_ == 0) return {};
+        const double n = static_cast<double>(steps_);
+        std::ostringstream json;
+        json << "\"smb_update_s\":" << phases_.update_seconds / n << ",\"smb_sort_s\":" << phases_.sort_seconds / n
+             << ",\"smb_cut_regroup_s\":" << phases_.cut_regroup_seconds / n << ",\"smb_check_s\":"
+             << phases_.check_seconds / n << ",\"smb_detect_s\":" << phases_.total_seconds / n
+             << ",\"smb_sort_moves\":" << static_cast<double>(phases_.sort_moves) / n << ",\"smb_cells\":" << phases_.cells
+             << ",\"smb_oversized\":" << phases_.oversized_boxes << ",\"smb_bytes_held\":" << phases_.bytes_held;
+        return json.str();
     }
 
 private:
     World<float, Dim> world_;
+    DetectStats phases_;
+    std::size_t steps_ = 0;
 };
 
 }  // namespace
