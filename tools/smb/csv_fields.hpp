@@ -1,0 +1,24 @@
+#pragma once
+// Field-level parsing shared by the scene and pair CSV readers. Problems are thrown as
+// std::invalid_argument with a message naming the column; the readers add file and line.
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+namespace smb::io {
+
+/// Splits a line at commas into `fields` (cleared first). Quoting is not part of our formats.
+void split_fields(std::string_view line, std::vector<std::string_view>& fields);
+
+/// Drops surrounding spaces and tabs.
+[[nodiscard]] std::string_view trim(std::string_view text);
+
+/// A decimal unsigned 64-bit integer: no sign, no spaces inside, no overflow.
+[[nodiscard]] std::uint64_t parse_unsigned(std::string_view field, std::string_view column);
+
+/// A finite decimal number rounded to the nearest double (std::from_chars), optionally signed.
+/// NaN and infinities are rejected; values below the smallest subnormal round to zero.
+[[nodiscard]] double parse_finite_double(std::string_view field, std::string_view column);
+
+}  // namespace smb::io

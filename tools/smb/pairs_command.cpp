@@ -1,0 +1,77 @@
+#include "pairs_command.hpp"
+
+#include <vector>
+
+#include "file_streams.hpp"
+#include "frame_diff.hpp"
+#include "pair_csv.hpp"
+#include "scene_csv.hpp"
+#include "smb/world.hpp"
+
+namespace smb::cli {
+
+namespace {
+
+// One World follows the scene through all its frames, so that detection profits from the small
+// motion between frames exactly as a simulation would; the file is read one frame at a time.
+template <int Dim>
+void write_pairs_of_every_frame(io::SceneReader& reader, std::ostream& out) {
+    World<double, Dim> world;
+    io::PairWriter writer(out);
+    io::SceneFrame<Dim> frame;
+    io::FrameChanges<Dim> changes;
+    std::vector<BoxId> previous_ids;
+    std::vector<Pair> pairs;
+    bool first_frame = true;
+    std::uint64_t previous_number = 0;
+
+    while (reader.read_frame(frame)) {
+        // A skipped frame number is an empty frame: everything was deleted in between.
+        if (!first_frame && frame.number > previous_number + 1) {
+            world.clear();
+            previous_ids.clear();
+        }
+        io::diff_frames<Dim>(previous_ids, frame, changes);
+        world.remove(changes.removed_ids);
+        world.update(changes.updated_ids, changes.updated_boxes);
+        world.insert(changes.inserted_ids, changes.inserted_boxes);
+
+        world.detect(pairs);
+        sort_pairs(pairs);
+        writer.write_frame(frame.number, pairs);
+
+        previous_ids.swap(frame.ids);
+        previous_number = frame.number;
+        first_frame = false;
+    }
+    writer.flush();
+}
+
+}  // namespace
+
+PairsCommand::PairsCommand(CLI::App& parent)
+    : app_(parent.add_subcommand("pairs",
+                                 "Find the overlapping pairs of every frame of a scene CSV "
+                                 "and write them as a pair CSV")) {
+    app_->add_option("-i,--input", input_, "scene CSV to read ('-' for standard input)")
+        ->capture_default_str();
+    app_->add_option("-o,--output", output_,
+                     "pair CSV to write ('-' for standard output); written to a temporary file "
+                     "and renamed only on success")
+        ->capture_default_str();
+}
+
+int PairsCommand::run() const {
+    io::InputFile input(input_);
+    io::SceneReader reader(input.stream(), input.name());
+    io::OutputFile output(output_);
+    if (reader.dimension() == 2) {
+        write_pairs_of_every_frame<2>(reader, output.stream());
+    } else {
+        write_pairs_of_every_frame<3>(reader, output.stream());
+    }
+    output.commit();
+    return 0;
+}
+
+}  // namespace smb::cli

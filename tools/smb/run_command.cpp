@@ -1,0 +1,126 @@
+#include "run_command.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <iterator>
+#include <vector>
+
+#include "progress_bar.hpp"
+#include "run_report.hpp"
+#include "smb/workload/reference_grid.hpp"
+#include "smb/workload/world_sync.hpp"
+#include "smb/world.hpp"
+
+namespace smb::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Compares one detection (sorted) with the reference and records the outcome.
+template <int Dim>
+void check_step(const workload::DynamicEnvironment<Dim>& environment,
+                const std::vector<Pair>& detected, std::size_t step, CheckRecord& check) {
+    const auto start = Clock::now();
+    const std::vector<Pair> expected =
+        workload::grid_pairs<double, Dim>(environment.ids(), environment.boxes());
+    check.last_reference_seconds = seconds_since(start);
+    ++check.steps_checked;
+    check.last_checked_step = step;
+    if (detected == expected) return;
+
+    std::vector<Pair> missing;
+    std::vector<Pair> extra;
+    std::set_difference(expected.begin(), expected.end(), detected.begin(), detected.end(),
+                        std::back_inserter(missing));
+    std::set_difference(detected.begin(), detected.end(), expected.begin(), expected.end(),
+                        std::back_inserter(extra));
+    // On sorted ranges set_difference counts multiplicity, so a repeated pair shows up as extra.
+    if (check.mismatched_steps++ == 0) {
+        check.first_bad_step = step;
+        check.missing_pairs = missing.size();
+        check.extra_pairs = extra.size();
+        if (!missing.empty()) check.example_missing = missing.front();
+        if (!extra.empty()) check.example_extra = extra.front();
+    }
+}
+
+}  // namespace
+
+RunCommand::RunCommand(CLI::App& parent)
+    : app_(parent.add_subcommand("run",
+                                 "Run the paper's artificial dynamic environment in memory, time "
+                                 "every detection and check the last one")) {
+    add_environment_options(*app_, environment_);
+    target_cell_population_ = WorldSettings{}.target_cell_population;
+    app_->add_option("--cell-population", target_cell_population_,
+                     "boxes the axial cuts aim to put in one cell (WorldSettings)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    auto* check_every = app_->add_option("--check-every", check_every_,
+                                         "also check every K-th step against the grid reference "
+                                         "(the last step is always checked)");
+    app_->add_flag("--no-check", no_check_, "skip the reference check")->excludes(check_every);
+    app_->add_flag("--json", json_, "print the summary as one JSON object on standard output");
+    app_->add_flag("--no-progress", no_progress_, "never draw the progress bar");
+}
+
+int RunCommand::run() const { return environment_.dimension == 2 ? run_in<2>() : run_in<3>(); }
+
+template <int Dim>
+int RunCommand::run_in() const {
+    workload::DynamicEnvironment<Dim> environment(environment_.params());
+    WorldSettings settings;
+    settings.target_cell_population = target_cell_population_;
+    World<double, Dim> world(settings);
+
+    RunRecord run;
+    run.dimension = Dim;
+    run.initial_boxes = environment.size();
+    run.packing_density = environment.packing_density();
+    run.cube_side = environment.cube_side();
+    run.size_ratio = environment_.size_ratio;
+    run.update_factor = environment_.update_factor;
+    run.seed = environment_.seed;
+    run.target_cell_population = target_cell_population_;
+    run.check.enabled = !no_check_;
+
+    const std::size_t steps = environment_.steps;
+    ProgressBar progress(steps, !no_progress_ && standard_error_is_terminal());
+    std::vector<Pair> pairs;
+    for (std::size_t step = 1; step <= steps; ++step) {
+        if (step > 1) environment.step();
+        StepRecord record;
+        auto start = Clock::now();
+        workload::apply_changes(environment.changes(), world);
+        record.world_update_seconds = seconds_since(start);
+        start = Clock::now();
+        record.stats = world.detect(pairs);
+        record.detect_seconds = seconds_since(start);
+        run.steps.push_back(record);
+
+        const bool scheduled = check_every_ > 0 && step % check_every_ == 0;
+        if (run.check.enabled && (scheduled || step == steps)) {
+            sort_pairs(pairs);
+            check_step(environment, pairs, step, run.check);
+        }
+        progress.update(step, record.detect_seconds);
+    }
+    progress.finish();
+    run.final_boxes = environment.size();
+    run.bytes_held = world.bytes_held();
+
+    if (json_) {
+        std::cout << json_summary(run).dump(2) << '\n';
+    } else {
+        print_text_summary(run, std::cout);
+    }
+    return run.check.ok() ? 0 : mismatch_exit_status;
+}
+
+}  // namespace smb::cli

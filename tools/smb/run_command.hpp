@@ -1,0 +1,35 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstddef>
+
+#include "environment_options.hpp"
+
+namespace smb::cli {
+
+/// `smb run`: the paper's dynamic environment in memory, detected step after step by one World,
+/// timed, and checked against the independent grid reference.
+class RunCommand {
+public:
+    explicit RunCommand(CLI::App& parent);
+
+    [[nodiscard]] bool selected() const { return app_->parsed(); }
+    /// 0, or 2 when a checked step differs from the reference.
+    [[nodiscard]] int run() const;
+
+    static constexpr int mismatch_exit_status = 2;
+
+private:
+    template <int Dim>
+    int run_in() const;
+
+    CLI::App* app_;
+    EnvironmentOptions environment_;
+    std::size_t target_cell_population_ = 0;
+    std::size_t check_every_ = 0;
+    bool no_check_ = false;
+    bool json_ = false;
+    bool no_progress_ = false;
+};
+
+}  // namespace smb::cli

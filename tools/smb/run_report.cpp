@@ -1,0 +1,172 @@
+#include "run_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace smb::cli {
+
+namespace {
+
+using StepQuantity = std::function<double(const StepRecord&)>;
+
+double median_of(std::vector<double> values) {
+    if (values.empty()) return 0;
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    if (values.size() % 2 == 1) return *middle;
+    const double upper = *middle;
+    const double lower = *std::max_element(values.begin(), middle);
+    return (lower + upper) / 2;
+}
+
+/// Spread over the steps after the build step (the first), which is reported apart.
+Spread spread_after_build(const RunRecord& run, const StepQuantity& quantity) {
+    if (run.steps.size() < 2) return {};
+    std::vector<double> values;
+    for (const auto& step : std::span(run.steps).subspan(1)) values.push_back(quantity(step));
+    const auto [low, high] = std::minmax_element(values.begin(), values.end());
+    return {median_of(values), *low, *high};
+}
+
+double median_after_build(const RunRecord& run, const StepQuantity& quantity) {
+    return spread_after_build(run, quantity).median;
+}
+
+double bytes_per_box(const RunRecord& run) {
+    return run.final_boxes == 0
+               ? 0.0
+               : static_cast<double>(run.bytes_held) / static_cast<double>(run.final_boxes);
+}
+
+std::string duration_text(double seconds) {
+    return seconds < 1 ? fmt::format("{:.3f} ms", seconds * 1e3) : fmt::format("{:.3f} s", seconds);
+}
+
+std::string pair_text(const std::optional<Pair>& pair) {
+    return pair ? fmt::format("({}, {})", pair->a, pair->b) : std::string("-");
+}
+
+const StepQuantity detect_time = [](const StepRecord& s) { return s.detect_seconds; };
+const StepQuantity world_update_time = [](const StepRecord& s) { return s.world_update_seconds; };
+const StepQuantity pair_count = [](const StepRecord& s) {
+    return static_cast<double>(s.stats.pairs);
+};
+const StepQuantity sort_time = [](const StepRecord& s) { return s.stats.sort_seconds; };
+const StepQuantity cut_time = [](const StepRecord& s) { return s.stats.cut_regroup_seconds; };
+const StepQuantity check_time = [](const StepRecord& s) { return s.stats.check_seconds; };
+const StepQuantity list_update_time = [](const StepRecord& s) { return s.stats.update_seconds; };
+
+}  // namespace
+
+void print_text_summary(const RunRecord& run, std::ostream& out) {
+    auto line = [&out](std::string_view label, const std::string& text) {
+        out << fmt::format("  {:<22}{}\n", label, text);
+    };
+    out << fmt::format(
+        "smb run: {}D, N {} -> {}, E {:g} (cube side {:.4g}), H {:g}, update factor {:g}, {} "
+        "steps, "
+        "seed {}\n",
+        run.dimension, run.initial_boxes, run.final_boxes, run.packing_density, run.cube_side,
+        run.size_ratio, run.update_factor, run.steps.size(), run.seed);
+    if (!run.steps.empty()) line("build (step 1)", duration_text(run.steps.front().detect_seconds));
+    if (run.steps.size() >= 2) {
+        const Spread detect = spread_after_build(run, detect_time);
+        line(fmt::format("detect ({} steps)", run.steps.size() - 1),
+             fmt::format("median {}, min {}, max {}", duration_text(detect.median),
+                         duration_text(detect.min), duration_text(detect.max)));
+        line("phases (median)", fmt::format("sort {}, cut+regroup {}, check {}",
+                                            duration_text(median_after_build(run, sort_time)),
+                                            duration_text(median_after_build(run, cut_time)),
+                                            duration_text(median_after_build(run, check_time))));
+        line("world update (median)",
+             duration_text(median_after_build(run, world_update_time)) + " in the batch calls");
+        line("pairs per step",
+             fmt::format("median {:.0f}, last {}", median_after_build(run, pair_count),
+                         run.steps.back().stats.pairs));
+    } else if (!run.steps.empty()) {
+        line("pairs", fmt::format("{}", run.steps.back().stats.pairs));
+    }
+    line("memory", fmt::format("{:.1f} bytes per box ({:.1f} MB held)", bytes_per_box(run),
+                               static_cast<double>(run.bytes_held) / 1e6));
+
+    const CheckRecord& check = run.check;
+    if (!check.enabled) {
+        line("check", "skipped");
+    } else if (check.ok()) {
+        line("check", fmt::format("OK, {} step(s) equal the grid reference (last: step {}, "
+                                  "reference {})",
+                                  check.steps_checked, check.last_checked_step,
+                                  duration_text(check.last_reference_seconds)));
+    } else {
+        line("check", fmt::format("MISMATCH in {} of {} checked step(s); step {}: {} pairs "
+                                  "missing (e.g. {}), {} extra (e.g. {})",
+                                  check.mismatched_steps, check.steps_checked, check.first_bad_step,
+                                  check.missing_pairs, pair_text(check.example_missing),
+                                  check.extra_pairs, pair_text(check.example_extra)));
+    }
+}
+
+nlohmann::ordered_json json_summary(const RunRecord& run) {
+    using json = nlohmann::ordered_json;
+    const bool has_later_steps = run.steps.size() >= 2;
+    auto spread_json = [&](const StepQuantity& quantity) -> json {
+        if (!has_later_steps) return nullptr;
+        const Spread spread = spread_after_build(run, quantity);
+        return {{"median", spread.median}, {"min", spread.min}, {"max", spread.max}};
+    };
+    auto median_json = [&](const StepQuantity& quantity) -> json {
+        if (!has_later_steps) return nullptr;
+        return median_after_build(run, quantity);
+    };
+
+    json summary;
+    summary["dimension"] = run.dimension;
+    summary["boxes"] = {{"initial", run.initial_boxes}, {"final", run.final_boxes}};
+    summary["packing_density"] = run.packing_density;
+    summary["cube_side"] = run.cube_side;
+    summary["size_ratio"] = run.size_ratio;
+    summary["update_factor"] = run.update_factor;
+    summary["steps"] = run.steps.size();
+    summary["seed"] = run.seed;
+    summary["target_cell_population"] = run.target_cell_population;
+    summary["build_seconds"] =
+        run.steps.empty() ? json(nullptr) : json(run.steps.front().detect_seconds);
+    summary["detect_seconds"] = spread_json(detect_time);
+    summary["world_update_seconds_median"] = median_json(world_update_time);
+    summary["phase_seconds_median"] =
+        has_later_steps ? json{{"list_update", median_after_build(run, list_update_time)},
+                               {"sort", median_after_build(run, sort_time)},
+                               {"cut_regroup", median_after_build(run, cut_time)},
+                               {"check", median_after_build(run, check_time)}}
+                        : json(nullptr);
+    summary["pairs"] = {{"median", median_json(pair_count)},
+                        {"last", run.steps.empty() ? 0 : run.steps.back().stats.pairs}};
+    summary["bytes_held"] = run.bytes_held;
+    summary["bytes_per_box"] = bytes_per_box(run);
+    summary["oversized_boxes_last"] =
+        run.steps.empty() ? 0 : run.steps.back().stats.oversized_boxes;
+
+    const CheckRecord& check = run.check;
+    json check_json = {{"enabled", check.enabled},
+                       {"ok", check.ok()},
+                       {"steps_checked", check.steps_checked},
+                       {"mismatched_steps", check.mismatched_steps}};
+    if (check.enabled && check.steps_checked > 0) {
+        check_json["last_checked_step"] = check.last_checked_step;
+        check_json["reference_seconds"] = check.last_reference_seconds;
+    }
+    if (!check.ok()) {
+        check_json["first_bad_step"] = check.first_bad_step;
+        check_json["missing_pairs"] = check.missing_pairs;
+        check_json["extra_pairs"] = check.extra_pairs;
+    }
+    summary["check"] = check_json;
+    return summary;
+}
+
+}  // namespace smb::cli

@@ -1,0 +1,64 @@
+#pragma once
+// What `smb run` measured, and its two renderings: a short text summary and one JSON object.
+
+#include <cstddef>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+#include <vector>
+
+#include "smb/pair.hpp"
+#include "smb/stats.hpp"
+
+namespace smb::cli {
+
+struct StepRecord {
+    double world_update_seconds = 0;  ///< the batch insert / remove / update calls
+    double detect_seconds = 0;        ///< wall time of detect()
+    DetectStats stats;
+};
+
+/// Outcome of comparing detections with the grid reference.
+struct CheckRecord {
+    bool enabled = false;
+    std::size_t steps_checked = 0;
+    std::size_t mismatched_steps = 0;
+    std::size_t last_checked_step = 0;  ///< 1-based
+    double last_reference_seconds = 0;
+    // Details of the first mismatch.
+    std::size_t first_bad_step = 0;
+    std::size_t missing_pairs = 0;  ///< found by the reference, not by detect()
+    std::size_t extra_pairs = 0;    ///< reported by detect(), not by the reference
+    std::optional<Pair> example_missing;
+    std::optional<Pair> example_extra;
+
+    [[nodiscard]] bool ok() const noexcept { return mismatched_steps == 0; }
+};
+
+struct RunRecord {
+    int dimension = 3;
+    std::size_t initial_boxes = 0;
+    std::size_t final_boxes = 0;
+    double packing_density = 0;
+    double cube_side = 0;
+    double size_ratio = 0;
+    double update_factor = 0;
+    std::uint64_t seed = 0;
+    std::size_t target_cell_population = 0;
+    std::vector<StepRecord> steps;
+    std::size_t bytes_held = 0;  ///< world.bytes_held() after the last step
+    CheckRecord check;
+};
+
+/// Median, minimum and maximum of one quantity over the steps after the first.
+struct Spread {
+    double median = 0;
+    double min = 0;
+    double max = 0;
+};
+
+void print_text_summary(const RunRecord& run, std::ostream& out);
+[[nodiscard]] nlohmann::ordered_json json_summary(const RunRecord& run);
+
+}  // namespace smb::cli
