@@ -7,3 +7,24 @@ smb_add_gtest(NAME test_dynamic_environment
 smb_add_gtest(NAME test_reference_grid
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_reference_grid.cpp
   LIBS smb_workload)
+
+# The CSV formats and the tool live in tools/smb, built only with SMB_BUILD_TOOLS.
+if(TARGET smb_io)
+  foreach(name test_scene_csv test_pair_csv test_cli_frame_diff test_cli_output_file)
+    smb_add_gtest(NAME ${name} SOURCES ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp LIBS smb_io)
+  endforeach()
+endif()
+
+# End to end: the built binary on small scenes in tests/data/cli.
+if(TARGET smb_cli)
+  find_package(nlohmann_json REQUIRED)
+  foreach(name test_cli_pairs test_cli_generate_run)
+    smb_add_gtest(NAME ${name}
+      SOURCES ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp
+      LIBS smb_io smb_workload nlohmann_json::nlohmann_json)
+    target_compile_definitions(${name} PRIVATE
+      SMB_CLI_PATH="$<TARGET_FILE:smb_cli>"
+      SMB_CLI_DATA_DIR="${CMAKE_CURRENT_LIST_DIR}/data/cli")
+    add_dependencies(${name} smb_cli)
+  endforeach()
+endif()
