@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "heap_meter.hpp"
 #include "pair_digest.hpp"
 #include "peers/peer.hpp"
 #include "scenes/scene.hpp"
@@ -118,6 +119,7 @@ int run(const RunOptions& options) {
     std::vector<std::size_t> pair_counts;
     double first_seconds = 0;
     std::size_t first_boxes = 0, most_boxes = 0, pair_capacity = 0, resident_before = 0;
+    bool pair_list_grew = false;  // then the method's heap count includes the pair list
 
     for (std::size_t index = 0; index <= options.steps; ++index) {
         const SceneStep<Dim>& step = scene->advance();
@@ -127,10 +129,19 @@ int run(const RunOptions& options) {
             reset_resident_peak();
             resident_before = resident_bytes();
         }
+        // The pair list belongs to the harness: grown here, outside the method's timing and
+        // heap count, to twice the last step's pairs (step 0: four per box).
+        const std::size_t wanted = index == 0 ? 4 * step.size() + 1024 : 2 * pairs.size() + 1024;
+        if (pairs.capacity() < wanted) pairs.reserve(wanted);
+        const std::size_t capacity_before = pairs.capacity();
         const auto start = Clock::now();
-        if (peer && index == 0) peer->build(step, pairs);
-        else if (peer) peer->step(step, pairs);
+        if (peer) {
+            const heap_meter::CountingScope count_method_heap;
+            if (index == 0) peer->build(step, pairs);
+            else peer->step(step, pairs);
+        }
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        if (pairs.capacity() != capacity_before) pair_list_grew = true;
         if (index == 0) first_seconds = seconds;
         else step_seconds.push_back(seconds);
         pair_capacity = std::max(pair_capacity, pairs.capacity());
@@ -147,7 +158,10 @@ int run(const RunOptions& options) {
          << ",\"median_step_s\":" << median_of(step_seconds) << ",\"min_step_s\":"
          << (step_seconds.empty() ? 0.0 : *std::min_element(step_seconds.begin(), step_seconds.end()))
          << ",\"peak_rss_bytes\":" << peak_rss_bytes() << ",\"resident_before_bytes\":" << resident_before
-         << ",\"resident_peak_bytes\":" << resident_peak_bytes() << ",\"pair_list_bytes\":" << pair_capacity * sizeof(Pair)
+         << ",\"resident_peak_bytes\":" << resident_peak_bytes() << ",\"heap_meter\":"
+         << (heap_meter::available() ? "true" : "false") << ",\"heap_peak_bytes\":" << heap_meter::peak_bytes()
+         << ",\"heap_live_bytes\":" << heap_meter::live_bytes() << ",\"pair_list_grew\":"
+         << (pair_list_grew ? "true" : "false") << ",\"pair_list_bytes\":" << pair_capacity * sizeof(Pair)
          << ",\"pairs\":[";
     for (std::size_t i = 0; i < pair_counts.size(); ++i) json << (i ? "," : "") << pair_counts[i];
     json << "],\"digests\":[";

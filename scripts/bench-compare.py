@@ -166,14 +166,19 @@ def main():
                     problems = check_agreement(results)
                     all_problems += [f"[{label}] {p}" for p in problems]
                     smb = next((r for r in results if r["method"] == "smb"), None)
-                    # Resident growth from just before step 0's build to the peak, less what
-                    # the scene alone grows by (the "none" run) and less the returned pair list
-                    # (its capacity, plus the half-size buffer alive while it last grew).
+                    # The method's own memory: the peak of the heap it allocated inside its
+                    # build() and step() calls (smb_compare's heap meter). Where the meter is
+                    # off (sanitizer builds), resident growth less the scene's own and the pair list.
                     harness_growth = baseline["resident_peak_bytes"] - baseline["resident_before_bytes"]
                     for r in results:
-                        own_bytes = (r["resident_peak_bytes"] - r["resident_before_bytes"] - harness_growth
-                                     - 1.5 * r["pair_list_bytes"])
+                        if r["heap_meter"]:
+                            own_bytes, held_bytes = r["heap_peak_bytes"], r["heap_live_bytes"]
+                        else:
+                            own_bytes = (r["resident_peak_bytes"] - r["resident_before_bytes"] - harness_growth
+                                         - r["pair_list_bytes"])
+                            held_bytes = own_bytes
                         r["bytes_per_box"] = max(0, own_bytes) / max(1, r["max_boxes"])
+                        r["held_bytes_per_box"] = max(0, held_bytes) / max(1, r["max_boxes"])
                     for r in results:
                         ratio = lambda key: (r[key] / smb[key]) if smb and smb[key] > 0 else ""
                         rows.append({
@@ -182,7 +187,8 @@ def main():
                             "method": r["method"], "status": "ok", "note": "",
                             "first_step_s": r["first_step_s"], "median_step_s": r["median_step_s"],
                             "min_step_s": r["min_step_s"], "peak_rss_mib": r["peak_rss_bytes"] / 2**20,
-                            "bytes_per_box": r["bytes_per_box"], "pairs_step0": r["pairs"][0],
+                            "bytes_per_box": r["bytes_per_box"],
+                            "held_bytes_per_box": r["held_bytes_per_box"], "pairs_step0": r["pairs"][0],
                             "pairs_last": r["pairs"][-1], "digest_last": r["digests"][-1],
                             "agrees": r.get("agrees", ""),
                             "first_ratio_to_smb": ratio("first_step_s"), "step_ratio_to_smb": ratio("median_step_s"),
@@ -200,7 +206,7 @@ def main():
                         print(f"[{label}] MISMATCH: {p}", flush=True)
 
     fields = ["machine", "mode", "family", "dim", "lambda", "boxes", "max_boxes", "steps", "method", "status", "note",
-              "first_step_s", "median_step_s", "min_step_s", "peak_rss_mib", "bytes_per_box", "pairs_step0",
+              "first_step_s", "median_step_s", "min_step_s", "peak_rss_mib", "bytes_per_box", "held_bytes_per_box", "pairs_step0",
               "pairs_last", "digest_last", "agrees", "first_ratio_to_smb", "step_ratio_to_smb", "memory_ratio_to_smb"]
     csv_path = os.path.join(out_dir, f"{args.mode}.csv")
     with open(csv_path, "w", newline="") as handle:

@@ -35,7 +35,7 @@ def scene_key(row):
     return (row["family"], int(row["dim"]), float(row["lambda"]), int(row["boxes"]))
 
 
-def plot_lines(rows, value, ylabel, title, path, family, update_factor):
+def plot_lines(rows, value, ylabel, title, path, family, update_factor, log_y=True):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
     for ax, dim in zip(axes, (3, 2)):
         series = defaultdict(list)
@@ -49,7 +49,10 @@ def plot_lines(rows, value, ylabel, title, path, family, update_factor):
                 ax.plot([p[0] for p in points], [p[1] for p in points], label=SHORT[method],
                         **STYLE.get(method, dict(marker=".")))
         ax.set_xscale("log")
-        ax.set_yscale("log")
+        if log_y:
+            ax.set_yscale("log")
+        else:
+            ax.set_ylim(bottom=0)
         ax.set_xlabel("boxes N")
         ax.set_ylabel(ylabel)
         ax.set_title(f"{dim}D")
@@ -83,7 +86,7 @@ def tables(rows, methods):
     out = []
     for title, value, scale, unit in (("Median time per step (ratio to smb; above 1 = smb faster)", "median_step_s", 1e3, " ms"),
                                       ("First step: build and detect (ratio to smb)", "first_step_s", 1e3, " ms"),
-                                      ("Memory: bytes per box held by the method (ratio to smb)", "bytes_per_box", 1, " B")):
+                                      ("Memory: peak heap bytes per box allocated by the method (ratio to smb)", "bytes_per_box", 1, " B")):
         out += [f"### {title}", "", header, rule]
         for key in sorted(by_scene, key=lambda k: (k[0], -k[1], k[2], k[3])):
             family, dim, update_factor, boxes = key
@@ -120,9 +123,9 @@ def main():
                    os.path.join(out_dir, f"{mode}-step-time-L{update_factor:g}.png"), "paper", update_factor)
     memory_factor = 1e-3 if 1e-3 in update_factors else (update_factors[0] if update_factors else None)
     if memory_factor is not None:
-        plot_lines(rows, "bytes_per_box", "bytes per box (method's own)",
+        plot_lines(rows, "bytes_per_box", "peak heap bytes per box",
                    f"Paper environment, Λ = {memory_factor:g}: memory per box",
-                   os.path.join(out_dir, f"{mode}-memory-per-box.png"), "paper", memory_factor)
+                   os.path.join(out_dir, f"{mode}-memory-per-box.png"), "paper", memory_factor, log_y=False)
     present = {r["method"] for r in rows}
     methods = [m for m in METHOD_ORDER if m in present]
     with open(os.path.join(out_dir, f"{mode}-tables.md"), "w") as handle:
