@@ -106,6 +106,25 @@ def check_agreement(results):
     return problems
 
 
+FIELDS = ["machine", "mode", "family", "dim", "lambda", "boxes", "max_boxes", "steps", "method", "status", "note",
+          "first_step_s", "median_step_s", "min_step_s", "peak_rss_mib", "bytes_per_box", "held_bytes_per_box",
+          "pairs_step0", "pairs_last", "digest_last", "agrees", "first_ratio_to_smb", "step_ratio_to_smb",
+          "memory_ratio_to_smb"]
+
+
+def write_results(out_dir, name, rows, raw_lines):
+    """Rewritten after every scene, so an interrupted run keeps what it measured."""
+    csv_path = os.path.join(out_dir, f"{name}.csv")
+    with open(csv_path, "w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=FIELDS)
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
+    with open(os.path.join(out_dir, f"{name}.jsonl"), "w") as handle:
+        handle.write("\n".join(raw_lines) + "\n")
+    return csv_path
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", default="build")
@@ -114,6 +133,7 @@ def main():
     parser.add_argument("--methods", default="", help="comma-separated subset (default: all in the build)")
     parser.add_argument("--families", default="", help="comma-separated subset of scene families")
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--output", default="", help="base name of the result files (default: the mode)")
     parser.add_argument("--results-dir", default=os.path.join(os.path.dirname(__file__), "..", "bench", "results"))
     args = parser.parse_args()
 
@@ -204,18 +224,9 @@ def main():
                         "".join(f"; SKIPPED {n}: {why}" for n, why in skipped), flush=True)
                     for p in problems:
                         print(f"[{label}] MISMATCH: {p}", flush=True)
+                    csv_path = write_results(out_dir, args.output or args.mode, rows, raw_lines)
 
-    fields = ["machine", "mode", "family", "dim", "lambda", "boxes", "max_boxes", "steps", "method", "status", "note",
-              "first_step_s", "median_step_s", "min_step_s", "peak_rss_mib", "bytes_per_box", "held_bytes_per_box", "pairs_step0",
-              "pairs_last", "digest_last", "agrees", "first_ratio_to_smb", "step_ratio_to_smb", "memory_ratio_to_smb"]
-    csv_path = os.path.join(out_dir, f"{args.mode}.csv")
-    with open(csv_path, "w", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=fields)
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
-    with open(os.path.join(out_dir, f"{args.mode}.jsonl"), "w") as handle:
-        handle.write("\n".join(raw_lines) + "\n")
+    csv_path = write_results(out_dir, args.output or args.mode, rows, raw_lines)
     print(f"wrote {csv_path}")
     if all_problems:
         print("PAIR SETS DISAGREE:\n  " + "\n  ".join(all_problems), file=sys.stderr)
