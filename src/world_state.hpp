@@ -380,15 +380,17 @@ void WorldState<Real, Dim>::check_cells(Report& report) {
     for (std::size_t cell = 0; cell < cells; ++cell) {
         const std::uint32_t first = cell_begin[cell];
         const std::size_t size = cell_begin[cell + 1] - first;
-        if (size == 0) continue;
-        for (int depth = 0; depth + 1 < Dim; ++depth) {
-            lists.upper[static_cast<std::size_t>(depth)] =
-                std::span<const Item>(cell_lists_[static_cast<std::size_t>(depth)].data() + first, size);
+        if (size != 0) {
+            for (int depth = 0; depth + 1 < Dim; ++depth) {
+                lists.upper[static_cast<std::size_t>(depth)] = std::span<const Item>(
+                    cell_lists_[static_cast<std::size_t>(depth)].data() + first, size);
+            }
+            lists.deepest = std::span<const Entry>(deepest.list.data() + first, size);
+            checker_.check(lists, oversized_, store_.boxes(), map_, mask_, report);
+            for (const std::uint32_t slot : map_.boxes()) mask_.mark_cell_done(slot, Dim - 1);
+            map_.clear_cell();
         }
-        lists.deepest = std::span<const Entry>(deepest.list.data() + first, size);
-        checker_.check(lists, oversized_, store_.boxes(), map_, mask_, report);
-        for (const std::uint32_t slot : map_.boxes()) mask_.mark_cell_done(slot, Dim - 1);
-        map_.clear_cell();
+        // An empty cell may still close a column or a slab: the mask must learn it all the same.
         for (int depth = Dim - 2; depth >= 0; --depth) {
             const std::size_t per_segment = cells_per_segment[static_cast<std::size_t>(depth)];
             if ((cell + 1) % per_segment != 0) break;
