@@ -4,27 +4,30 @@
 #      every test;
 #   2. address + undefined-behaviour sanitizer build (build-ci-asan/), every test but the
 #      consumer proof, which builds its own uninstrumented copies and was proven in step 1.
-# Exits non-zero if any build or test fails.
+# Exits non-zero if any build or test fails. SMB_CI_BUILD_DIR and SMB_CI_ASAN_BUILD_DIR pick
+# other build folders, SMB_JOBS the parallelism (default 2).
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$repo_root"
 
 jobs=${SMB_JOBS:-2}
+release_dir=${SMB_CI_BUILD_DIR:-build-ci}
+asan_dir=${SMB_CI_ASAN_BUILD_DIR:-build-ci-asan}
 
 bash scripts/install-deps.sh
 
 echo "== Release build (warnings as errors, SMB_VALIDATE) =="
-cmake -S . -B build-ci -DCMAKE_BUILD_TYPE=Release \
+cmake -S . -B "$release_dir" -DCMAKE_BUILD_TYPE=Release \
   -DSMB_WARNINGS_AS_ERRORS=ON -DSMB_VALIDATE=ON
-cmake --build build-ci --parallel "$jobs"
-ctest --test-dir build-ci --output-on-failure -j"$jobs"
+cmake --build "$release_dir" --parallel "$jobs"
+ctest --test-dir "$release_dir" --output-on-failure -j"$jobs"
 
 echo "== Sanitizer build (ASan + UBSan) =="
-cmake -S . -B build-ci-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+cmake -S . -B "$asan_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSMB_SANITIZE=ON -DSMB_WARNINGS_AS_ERRORS=ON -DSMB_VALIDATE=ON -DSMB_BUILD_BENCHMARKS=OFF
-cmake --build build-ci-asan --parallel "$jobs"
+cmake --build "$asan_dir" --parallel "$jobs"
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1} \
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-  ctest --test-dir build-ci-asan --output-on-failure -j"$jobs" -LE consumer
+  ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -LE consumer
 
 echo "== all checks passed =="
