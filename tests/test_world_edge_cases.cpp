@@ -288,7 +288,7 @@ TYPED_TEST(WorldEdgeCaseTest, FewDistinctCoordinateValues) {
     // many boxes of zero extent. Driven over steps that redraw some boxes, with tiny and
     // ordinary cell populations.
     for (const std::size_t population : {std::size_t{1}, std::size_t{2}, std::size_t{24}}) {
-        for (const std::size_t count : {std::size_t{6}, std::size_t{20}, std::size_t{60}, scaled(400)}) {
+        for (const std::size_t count : {std::size_t{6}, std::size_t{20}, std::size_t{60}, scaled(250)}) {
             for (std::uint64_t seed = 1; seed <= 12; ++seed) {
                 SCOPED_TRACE(::testing::Message() << "population " << population << ", count "
                                                   << count << ", seed " << seed);
