@@ -163,9 +163,10 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        // unordered_map: one node per element (key, value, next pointer, cached hash) and one
-        // pointer per bucket; libstdc++ lays nodes out this way.
-        constexpr std::size_t node_bytes = sizeof(void*) + sizeof(std::pair<const BoxId, Slot>) + sizeof(std::size_t);
+        // unordered_map: one pointer per bucket and one node per element holding the next
+        // pointer and the (key, value) pair. libstdc++ caches no hash code in the node for
+        // integer keys, whose std::hash it deems fast.
+        constexpr std::size_t node_bytes = sizeof(void*) + sizeof(std::pair<const BoxId, Slot>);
         return boxes_.capacity() * sizeof(box_type) + ids_.capacity() * sizeof(BoxId) +
                alive_.capacity() + slot_of_id_.bucket_count() * sizeof(void*) +
                slot_of_id_.size() * node_bytes;
