@@ -1,0 +1,122 @@
+// Google Benchmark of one smb::World: the time of detect() per step on the paper's dynamic
+// environment and on the edge scenes of docs/algorithm.md. Only detect() is timed (manual
+// time from DetectStats): generating the scene and feeding the world are outside.
+//
+//   build/bench/smb_bench_world --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "smb/smb.hpp"
+#include "smb/workload/dynamic_environment.hpp"
+#include "smb/workload/world_sync.hpp"
+
+namespace {
+
+void report(benchmark::State& state, const smb::DetectStats& stats) {
+    state.SetIterationTime(stats.total_seconds);
+    state.counters["pairs"] = static_cast<double>(stats.pairs);
+    state.counters["bytes_per_box"] = stats.boxes ? static_cast<double>(stats.bytes_held) / static_cast<double>(stats.boxes) : 0.0;
+    state.counters["sort_ms"] = 1e3 * stats.sort_seconds;
+    state.counters["cut_regroup_ms"] = 1e3 * stats.cut_regroup_seconds;
+    state.counters["check_ms"] = 1e3 * stats.check_seconds;
+    state.counters["oversized"] = static_cast<double>(stats.oversized_boxes);
+}
+
+/// The paper's environment: args are N and Λ·1e6.
+template <int Dim>
+void paper_step(benchmark::State& state) {
+    smb::workload::EnvironmentParams params;
+    params.box_count = static_cast<std::size_t>(state.range(0));
+    params.update_factor = static_cast<double>(state.range(1)) * 1e-6;
+    smb::workload::DynamicEnvironment<Dim> environment(params);
+    smb::World<double, Dim> world;
+    world.insert(environment.ids(), environment.boxes());
+    std::vector<smb::Pair> pairs;
+    world.detect(pairs);  // the build step is not what this measures
+    for (auto _ : state) {
+        smb::workload::apply_changes(environment.step(), world);
+        report(state, world.detect(pairs));
+    }
+}
+BENCHMARK(paper_step<3>)->ArgNames({"N", "Lambda_e6"})
+    ->Args({100000, 1000})->Args({200000, 1000})->Args({200000, 10000})->Args({200000, 100000})
+    ->Iterations(10)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(paper_step<2>)->ArgNames({"N", "Lambda_e6"})->Args({200000, 1000})
+    ->Iterations(10)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+/// Scenes of the deviations in docs/algorithm.md, 3D, N = arg boxes of sides in [0.4, 1].
+enum class EdgeScene { kLayer, kFloor, kWalls, kJump, kIdentical };
+
+std::vector<smb::Box3d> edge_boxes(EdgeScene scene, std::size_t n, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const double side = std::cbrt(static_cast<double>(n) * 0.343 / 0.4);  // E = 0.4
+    std::vector<smb::Box3d> boxes(n);
+    for (auto& box : boxes) {
+        for (int k = 0; k < 3; ++k) {
+            const double centre = unit(rng) * side;
+            const double length = 0.4 + 0.6 * unit(rng);
+            box.min[k] = centre - length / 2;
+            box.max[k] = centre + length / 2;
+        }
+    }
+    switch (scene) {
+        case EdgeScene::kLayer: {  // every box flat on z = 0, E = 0.4 in the plane
+            const double plane_side = std::sqrt(static_cast<double>(n) * 0.49 / 0.4);
+            for (auto& box : boxes) {
+                for (int k = 0; k < 2; ++k) {
+                    const double centre = unit(rng) * plane_side;
+                    const double length = 0.4 + 0.6 * unit(rng);
+                    box.min[k] = centre - length / 2;
+                    box.max[k] = centre + length / 2;
+                }
+                box.min[2] = 0.0;
+                box.max[2] = 0.0;
+            }
+            break;
+        }
+        case EdgeScene::kFloor:
+            for (auto& box : boxes) { box.min[2] += 1.0; box.max[2] += 1.0; }
+            boxes[0] = smb::Box3d{{-1, -1, 0}, {side + 1, side + 1, 1.2}};
+            break;
+        case EdgeScene::kWalls:
+            boxes[0] = smb::Box3d{{side / 2, -1, -1}, {side / 2 + 0.1, side + 1, side + 1}};
+            boxes[1] = smb::Box3d{{-1, side / 2, -1}, {side + 1, side / 2 + 0.1, side + 1}};
+            break;
+        case EdgeScene::kIdentical:
+            for (auto& box : boxes) box = smb::Box3d{{0, 0, 0}, {1, 1, 1}};
+            break;
+        case EdgeScene::kJump:
+            break;
+    }
+    return boxes;
+}
+
+/// Steady steps of a static edge scene; for kJump every step re-places every box at random.
+void edge_scene(benchmark::State& state, EdgeScene scene) {
+    const auto n = static_cast<std::size_t>(state.range(0));
+    std::mt19937_64 rng(42);
+    smb::World3d world;
+    world.assign(edge_boxes(scene, n, rng));
+    std::vector<smb::Pair> pairs;
+    world.detect(pairs);
+    for (auto _ : state) {
+        if (scene == EdgeScene::kJump) {
+            state.PauseTiming();
+            world.assign(edge_boxes(scene, n, rng));
+            state.ResumeTiming();
+        }
+        report(state, world.detect(pairs));
+    }
+}
+BENCHMARK_CAPTURE(edge_scene, layer, EdgeScene::kLayer)->Arg(200000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(edge_scene, floor, EdgeScene::kFloor)->Arg(200000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(edge_scene, walls, EdgeScene::kWalls)->Arg(200000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(edge_scene, jump, EdgeScene::kJump)->Arg(200000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(edge_scene, identical, EdgeScene::kIdentical)->Arg(5000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+}  // namespace
