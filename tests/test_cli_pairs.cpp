@@ -9,7 +9,7 @@
 
 #include "pair_csv.hpp"
 #include "scene_csv.hpp"
-#include "smb/workload/brute_force.hpp"
+#include "reference/brute_force.hpp"
 #include "test_cli_support.hpp"
 
 namespace smb::cli_test {
@@ -25,7 +25,7 @@ std::vector<io::FramePair> brute_force_pairs_of(const fs::path& scene_path) {
     std::vector<io::FramePair> rows;
     io::SceneFrame<Dim> frame;
     while (reader.read_frame(frame)) {
-        const auto pairs = workload::brute_force_pairs<double, Dim>(frame.ids, frame.boxes);
+        const auto pairs = test::brute_force_pairs<double, Dim>(frame.ids, frame.boxes);
         for (const Pair& pair : pairs) rows.push_back({frame.number, pair.a, pair.b});
     }
     return rows;

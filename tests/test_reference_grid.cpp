@@ -10,11 +10,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "smb/workload/brute_force.hpp"
+#include "reference/brute_force.hpp"
 #include "smb/workload/reference_grid.hpp"
 
 namespace smb::workload {
 namespace {
+
+using test::brute_force_pairs;
 
 template <typename Real, int Dim>
 struct Scene {
