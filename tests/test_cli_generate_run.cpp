@@ -90,6 +90,9 @@ TEST(CliRun, JsonSummaryOfASmallRun) {
               summary["detect_seconds"]["median"].get<double>());
     EXPECT_GT(summary["pairs"]["last"].get<std::size_t>(), 0u);
     EXPECT_GT(summary["bytes_per_box"].get<double>(), 0);
+    EXPECT_GT(summary["boxes"]["median"].get<double>(), 0);
+    EXPECT_GT(summary["peak_rss_bytes"].get<std::size_t>(),
+              summary["bytes_held"].get<std::size_t>());
     EXPECT_TRUE(summary["check"]["ok"].get<bool>());
     EXPECT_EQ(summary["check"]["steps_checked"], 1);
     EXPECT_EQ(summary["check"]["last_checked_step"], 10);

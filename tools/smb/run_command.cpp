@@ -6,6 +6,7 @@
 #include <iterator>
 #include <vector>
 
+#include "peak_memory.hpp"
 #include "progress_bar.hpp"
 #include "run_report.hpp"
 #include "smb/workload/reference_grid.hpp"
@@ -114,6 +115,7 @@ int RunCommand::run_in() const {
     progress.finish();
     run.final_boxes = environment.size();
     run.bytes_held = world.bytes_held();
+    run.peak_resident_bytes = peak_resident_bytes();
 
     if (json_) {
         std::cout << json_summary(run).dump(2) << '\n';

@@ -56,6 +56,9 @@ const StepQuantity world_update_time = [](const StepRecord& s) { return s.world_
 const StepQuantity pair_count = [](const StepRecord& s) {
     return static_cast<double>(s.stats.pairs);
 };
+const StepQuantity box_count = [](const StepRecord& s) {
+    return static_cast<double>(s.stats.boxes);
+};
 const StepQuantity sort_time = [](const StepRecord& s) { return s.stats.sort_seconds; };
 const StepQuantity cut_time = [](const StepRecord& s) { return s.stats.cut_regroup_seconds; };
 const StepQuantity check_time = [](const StepRecord& s) { return s.stats.check_seconds; };
@@ -91,8 +94,13 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
     } else if (!run.steps.empty()) {
         line("pairs", fmt::format("{}", run.steps.back().stats.pairs));
     }
-    line("memory", fmt::format("{:.1f} bytes per box ({:.1f} MB held)", bytes_per_box(run),
-                               static_cast<double>(run.bytes_held) / 1e6));
+    const std::string peak =
+        run.peak_resident_bytes
+            ? fmt::format(", peak RSS {:.1f} MB",
+                          static_cast<double>(*run.peak_resident_bytes) / 1e6)
+            : std::string();
+    line("memory", fmt::format("{:.1f} bytes per box ({:.1f} MB held{})", bytes_per_box(run),
+                               static_cast<double>(run.bytes_held) / 1e6, peak));
 
     const CheckRecord& check = run.check;
     if (!check.enabled) {
@@ -126,7 +134,10 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
 
     json summary;
     summary["dimension"] = run.dimension;
-    summary["boxes"] = {{"initial", run.initial_boxes}, {"final", run.final_boxes}};
+    // N drifts every step (by up to Λ·N), so the timed steps' median N is given too.
+    summary["boxes"] = {{"initial", run.initial_boxes},
+                        {"final", run.final_boxes},
+                        {"median", median_json(box_count)}};
     summary["packing_density"] = run.packing_density;
     summary["cube_side"] = run.cube_side;
     summary["size_ratio"] = run.size_ratio;
@@ -148,6 +159,8 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
                         {"last", run.steps.empty() ? 0 : run.steps.back().stats.pairs}};
     summary["bytes_held"] = run.bytes_held;
     summary["bytes_per_box"] = bytes_per_box(run);
+    summary["peak_rss_bytes"] =
+        run.peak_resident_bytes ? json(*run.peak_resident_bytes) : json(nullptr);
     summary["oversized_boxes_last"] =
         run.steps.empty() ? 0 : run.steps.back().stats.oversized_boxes;
 

@@ -48,6 +48,9 @@ struct RunRecord {
     std::size_t target_cell_population = 0;
     std::vector<StepRecord> steps;
     std::size_t bytes_held = 0;  ///< world.bytes_held() after the last step
+    /// The process's peak resident memory at the end: the world, the environment that feeds it
+    /// and the pair list (plus the reference check's grid when the check ran).
+    std::optional<std::size_t> peak_resident_bytes;
     CheckRecord check;
 };
 
