@@ -10,7 +10,7 @@ the steps after the first (build) step, which is reported apart. Writes, after e
     <out>/<mode>-meta.json how it ran: commands, steps, machine, load, durations
 Plot them with scripts/plot-reproduction.py.
 
-Modes: full (the paper's sizes), quick (N / 10, fewer points; a few minutes on 2 cores) and
+Modes: full (the paper's sizes), quick (N / 10, fewer points; about a minute on 2 cores) and
 smoke (N / 500, seconds; for CI). Sizes scaled below the paper's keep the paper's packing
 densities: the cube side x is scaled by the cube root of the N scale.
 
@@ -48,9 +48,9 @@ MODES = {
     # scale: factor on every N; steps: timed steps after the build step.
     "full": dict(scale=1.0, steps=5, table1=tuple(TABLE1), update_factors=UPDATE_FACTORS,
                  sides=TABLE2_SIDES, ratios=TABLE3_RATIOS, timeout=900),
-    "quick": dict(scale=0.1, steps=3, table1=(10, 200, 400, 600, 800, 1000),
-                  update_factors=(1e-5, 1e-3, 1e-1), sides=(100, 140, 200),
-                  ratios=(1.111, 2.0, 3.333, 10.0), timeout=300),
+    "quick": dict(scale=0.1, steps=5, table1=(10, 200, 400, 600, 800, 1000),
+                  update_factors=UPDATE_FACTORS, sides=(100, 140, 200),
+                  ratios=(1.111, 1.667, 2.5, 5.0, 10.0), timeout=300),
     "smoke": dict(scale=0.002, steps=2, table1=(10, 500, 1000), update_factors=(1e-5, 1e-1),
                   sides=(100, 200), ratios=(1.111, 10.0), timeout=60),
 }
