@@ -57,7 +57,7 @@ def by_case(rows, order_key):
 
 
 def column(rows, key):
-    return np.array([row[key] for row in rows], dtype=float)
+    return np.array([row.get(key, float("nan")) for row in rows], dtype=float)
 
 
 def case_title(case, rows=None):
@@ -136,7 +136,10 @@ def plot_section_41(rows, folder, prefix, subtitle, written, summary):
         slope, intercept, correlation = linear_fit(n, t)
         held_slope, _, held_correlation = linear_fit(n, column(case_rows, "bytes_held"))
         peak_slope, _, peak_correlation = linear_fit(n, column(case_rows, "peak_rss_bytes"))
+        cpu = column(case_rows, "step_cpu_median_s")
+        _, _, cpu_correlation = linear_fit(n, cpu)
         fits.append(dict(case=case, update_factor=case_rows[0]["update_factor"], n=n, t=t, slope=slope,
+                         cpu=cpu, cpu_correlation=cpu_correlation, cpu_exponent=growth_exponent(n, cpu),
                          intercept=intercept, correlation=correlation, exponent=growth_exponent(n, t),
                          build=column(case_rows, "build_s"), held_slope=held_slope,
                          held_correlation=held_correlation, peak_slope=peak_slope,
@@ -186,14 +189,28 @@ def plot_section_41(rows, folder, prefix, subtitle, written, summary):
     summary.append("Time t (median step after the build step) fitted as t = a + b·N over the median N of the timed "
                    "steps; r is Pearson's correlation coefficient of t against N (the paper's Fig. 7); k is the "
                    "exponent of t ~ N^k fitted on log-log axes (1 = linear).\n")
-    summary.append("| Λ | b (µs per box) | a (ms) | r | k | t at largest N (s) | µs/box smallest → largest N "
-                   "| build at largest N (s) |")
-    summary.append("|---|---|---|---|---|---|---|---|")
+    summary.append("| Λ | b (µs per box) | a (ms) | r | k | r, k of CPU time | t at largest N (s) "
+                   "| µs/box smallest → largest N | build at largest N (s) |")
+    summary.append("|---|---|---|---|---|---|---|---|---|")
     for fit in fits:
         per_box = fit["t"] / fit["n"] * 1e6
         summary.append(f"| {fit['update_factor']:g} | {fit['slope'] * 1e6:.3f} | {fit['intercept'] * 1e3:.1f} | "
-                       f"{fit['correlation']:.4f} | {fit['exponent']:.3f} | {fit['t'][-1]:.3f} | "
-                       f"{per_box[0]:.2f} → {per_box[-1]:.2f} | {fit['build'][-1]:.3f} |")
+                       f"{fit['correlation']:.4f} | {fit['exponent']:.3f} | {fit['cpu_correlation']:.4f}, "
+                       f"{fit['cpu_exponent']:.3f} | {fit['t'][-1]:.3f} | {per_box[0]:.2f} → {per_box[-1]:.2f} | "
+                       f"{fit['build'][-1]:.3f} |")
+    summary.append("")
+    summary.append("Where the time of a step goes (median phase times of the `DetectStats`, µs per box) at the "
+                   "smallest N above 10 000 and at the largest N:\n")
+    summary.append("| Λ | N | sort | cut + regroup | check | N | sort | cut + regroup | check |")
+    summary.append("|---|---|---|---|---|---|---|---|---|")
+    for fit in fits:
+        cells = [f"{fit['update_factor']:g}"]
+        large_rows = [row for row in fit["rows"] if row["boxes"] > 10_000] or fit["rows"]
+        for row in (large_rows[0], fit["rows"][-1]):
+            per_box = 1e6 / row["boxes_median"]
+            phases = [row["sort_s"], row["cut_regroup_s"], row["check_s"]]
+            cells += [f"{row['boxes']:.0f}"] + [f"{value * per_box:.2f}" for value in phases]
+        summary.append("| " + " | ".join(cells) + " |")
     summary.append("")
     summary.append("Memory against N (final N of each run): slope of a least-squares line (bytes per box) and r.\n")
     summary.append("| Λ | held: bytes/box (slope) | held: r | peak RSS: bytes/box (slope) | peak RSS: r "
@@ -205,43 +222,48 @@ def plot_section_41(rows, folder, prefix, subtitle, written, summary):
                        f"{fit['rows'][-1]['peak_rss_bytes'] / MB:.0f} | {fit['rows'][-1]['bytes_held'] / MB:.0f} |")
     summary.append("")
     summary.append("Every run of Section 4.1 (time in s, memory in bytes per box of the final N):\n")
-    summary.append("| Λ | N | N final | E | H | build | step median | min | max | pairs | held B/box | peak RSS B/box |")
-    summary.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    summary.append("| Λ | N | N final | E | H | build | step median | min | max | CPU median | pairs | held B/box "
+                   "| peak RSS B/box |")
+    summary.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for fit in fits:
         for row in fit["rows"]:
             summary.append(f"| {row['update_factor']:g} | {row['boxes']:.0f} | {row['boxes_final']:.0f} | "
                            f"{row['packing_density']:.2f} | {row['size_ratio']:g} | {row['build_s']:.3f} | "
                            f"{row['step_median_s']:.4f} | {row['step_min_s']:.4f} | {row['step_max_s']:.4f} | "
-                           f"{row['pairs_median']:.0f} | {row['bytes_per_box']:.0f} | {row['peak_rss_per_box']:.0f} |")
+                           f"{row.get('step_cpu_median_s', float('nan')):.4f} | {row['pairs_median']:.0f} | "
+                           f"{row['bytes_per_box']:.0f} | {row['peak_rss_per_box']:.0f} |")
     summary.append("")
 
 
 def spread_table(summary, cases, varied_key, varied_label):
     summary.append(f"| case | {varied_label} range | E range | t min (s) | t max (s) | max/min | (max-min)/median "
-                   "| held B/box range | peak RSS MB range |")
-    summary.append("|---|---|---|---|---|---|---|---|---|")
+                   "| CPU time max/min | held B/box range | peak RSS MB range |")
+    summary.append("|---|---|---|---|---|---|---|---|---|---|")
     for case, case_rows in cases:
         t = column(case_rows, "step_median_s")
         varied = column(case_rows, varied_key)
         density = column(case_rows, "packing_density")
         held = column(case_rows, "bytes_per_box")
         peak = column(case_rows, "peak_rss_bytes") / MB
-        summary.append(f"| {case_title(case, case_rows)} | {varied.min():g}–{varied.max():g} | {density.min():.3f}–"
+        cpu = column(case_rows, "step_cpu_median_s")
+        summary.append(f"| {case_title(case, case_rows)} | {varied.min():.4g}–{varied.max():.4g} | {density.min():.3f}–"
                        f"{density.max():.3f} | {t.min():.3f} | {t.max():.3f} | {t.max() / t.min():.2f} | "
-                       f"{(t.max() - t.min()) / np.median(t):.2f} | {held.min():.0f}–{held.max():.0f} | "
+                       f"{(t.max() - t.min()) / np.median(t):.2f} | {cpu.max() / cpu.min():.2f} | "
+                       f"{held.min():.0f}–{held.max():.0f} | "
                        f"{peak.min():.0f}–{peak.max():.0f} |")
     summary.append("")
 
 
 def run_table(summary, cases, varied_key, varied_label):
-    summary.append(f"| case | {varied_label} | E | build (s) | step median (s) | min | max | pairs | oversized "
-                   "| held B/box | peak RSS (MB) |")
-    summary.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    summary.append(f"| case | {varied_label} | E | build (s) | step median (s) | min | max | CPU median | pairs "
+                   "| oversized | held B/box | peak RSS (MB) |")
+    summary.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for case, case_rows in cases:
         for row in case_rows:
             summary.append(f"| {case_title(case, case_rows)} | {row[varied_key]:g} | {row['packing_density']:.3f} | "
                            f"{row['build_s']:.3f} | {row['step_median_s']:.4f} | {row['step_min_s']:.4f} | "
-                           f"{row['step_max_s']:.4f} | {row['pairs_median']:.0f} | {row['oversized_boxes']:.0f} | "
+                           f"{row['step_max_s']:.4f} | {row.get('step_cpu_median_s', float('nan')):.4f} | "
+                           f"{row['pairs_median']:.0f} | {row['oversized_boxes']:.0f} | "
                            f"{row['bytes_per_box']:.0f} | {row['peak_rss_bytes'] / MB:.0f} |")
     summary.append("")
 

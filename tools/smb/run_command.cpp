@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <iostream>
 #include <iterator>
 #include <vector>
@@ -101,7 +102,10 @@ int RunCommand::run_in() const {
         workload::apply_changes(environment.changes(), world);
         record.world_update_seconds = seconds_since(start);
         start = Clock::now();
+        const std::clock_t cpu_start = std::clock();
         record.stats = world.detect(pairs);
+        record.detect_cpu_seconds =
+            static_cast<double>(std::clock() - cpu_start) / static_cast<double>(CLOCKS_PER_SEC);
         record.detect_seconds = seconds_since(start);
         run.steps.push_back(record);
 

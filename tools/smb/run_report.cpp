@@ -52,6 +52,7 @@ std::string pair_text(const std::optional<Pair>& pair) {
 }
 
 const StepQuantity detect_time = [](const StepRecord& s) { return s.detect_seconds; };
+const StepQuantity detect_cpu_time = [](const StepRecord& s) { return s.detect_cpu_seconds; };
 const StepQuantity world_update_time = [](const StepRecord& s) { return s.world_update_seconds; };
 const StepQuantity pair_count = [](const StepRecord& s) {
     return static_cast<double>(s.stats.pairs);
@@ -80,8 +81,10 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
     if (run.steps.size() >= 2) {
         const Spread detect = spread_after_build(run, detect_time);
         line(fmt::format("detect ({} steps)", run.steps.size() - 1),
-             fmt::format("median {}, min {}, max {}", duration_text(detect.median),
-                         duration_text(detect.min), duration_text(detect.max)));
+             fmt::format("median {}, min {}, max {} (CPU median {})",
+                         duration_text(detect.median), duration_text(detect.min),
+                         duration_text(detect.max),
+                         duration_text(median_after_build(run, detect_cpu_time))));
         line("phases (median)", fmt::format("sort {}, cut+regroup {}, check {}",
                                             duration_text(median_after_build(run, sort_time)),
                                             duration_text(median_after_build(run, cut_time)),
@@ -148,6 +151,7 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     summary["build_seconds"] =
         run.steps.empty() ? json(nullptr) : json(run.steps.front().detect_seconds);
     summary["detect_seconds"] = spread_json(detect_time);
+    summary["detect_cpu_seconds"] = spread_json(detect_cpu_time);
     summary["world_update_seconds_median"] = median_json(world_update_time);
     summary["phase_seconds_median"] =
         has_later_steps ? json{{"list_update", median_after_build(run, list_update_time)},

@@ -16,6 +16,9 @@ namespace smb::cli {
 struct StepRecord {
     double world_update_seconds = 0;  ///< the batch insert / remove / update calls
     double detect_seconds = 0;        ///< wall time of detect()
+    /// Processor time of detect() (std::clock: this process's CPU time on POSIX systems). Next to
+    /// the wall time it shows whether other processes took the CPU away during the step.
+    double detect_cpu_seconds = 0;
     DetectStats stats;
 };
 
