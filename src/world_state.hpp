@@ -44,14 +44,8 @@ public:
     const WorldSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
 
-    void clear() {
-        store_.clear();
-        for (auto& level : levels_) {
-            level.list.clear();
-            level.section_begin.clear();
-        }
-        listed_ = 0;
-    }
+    /// Forgets every box and gives back every array, as a new world would have them.
+    void clear() { *this = WorldState(settings_); }
 
     DetectStats detect(const PairSink& sink);
 
@@ -438,7 +432,7 @@ void WorldState<Real, Dim>::check_invariants() const {
 
 template <std::floating_point Real, int Dim>
 std::size_t WorldState<Real, Dim>::bytes_held() const noexcept {
-    std::size_t bytes = store_.bytes_held();
+    std::size_t bytes = sizeof(*this) + store_.bytes_held();  // World allocates this state
     for (const Level& level : levels_) {
         bytes += level.list.capacity() * sizeof(Entry);
         bytes += (level.section_begin.capacity() + level.segment_begin.capacity()) * sizeof(std::uint32_t);

@@ -77,7 +77,7 @@ public:
     /// or above it are removed. All or none.
     void assign(std::span<const box_type> boxes);
 
-    /// Removes every box; keeps the settings.
+    /// Removes every box and releases the memory the world held; keeps the settings.
     void clear();
 
     [[nodiscard]] bool contains(BoxId id) const;
