@@ -30,6 +30,8 @@ import numpy as np  # noqa: E402
 
 REPO_ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 MB = 1e6
+# The paper's total memory read off its Figs 8, 10 and 12: about 250 MB for 1M boxes.
+PAPER_BYTES_PER_BOX = 250
 MARKERS = "osD^v<>p*"
 
 
@@ -110,6 +112,14 @@ def save(figure, folder, name, written):
     written.append(path)
 
 
+def plot_with_step_range(axes, x, rows, marker, label):
+    """The median step time, with a bar from the fastest to the slowest timed step."""
+    median = column(rows, "step_median_s")
+    below = median - column(rows, "step_min_s")
+    above = column(rows, "step_max_s") - median
+    axes.errorbar(x, median, yerr=[below, above], marker=marker, capsize=3, elinewidth=0.8, label=label)
+
+
 def memory_panels(title, xlabel):
     """Two panels side by side: the process's peak RSS and the bytes the structure holds."""
     figure, (left, right) = plt.subplots(1, 2, figsize=(11, 4.4))
@@ -179,7 +189,10 @@ def plot_section_41(rows, folder, prefix, subtitle, written, summary):
         left.plot(n_final / 1e3, column(fit["rows"], "peak_rss_bytes") / MB, marker=marker,
                   label=case_title(fit["case"]))
         right.plot(n_final / 1e3, column(fit["rows"], "bytes_held") / MB, marker=marker, label=case_title(fit["case"]))
+    largest = max(fit["n"].max() for fit in fits)
     for axes in (left, right):
+        axes.plot([0, largest / 1e3], [0, largest * PAPER_BYTES_PER_BOX / MB], color="grey", linestyle="--",
+                  linewidth=1, label=f"paper, about {PAPER_BYTES_PER_BOX} B/box (its Fig. 8)")
         axes.legend(fontsize=8)
         axes.set_xlim(left=0)
         axes.set_ylim(bottom=0)
@@ -275,9 +288,9 @@ def plot_section_42(rows, folder, prefix, subtitle, written, summary):
     figure, axes = new_figure(f"Fig. 9: packing density against detection time{subtitle}", "packing density E",
                               "median detection time per step (s)")
     for marker, (case, case_rows) in zip(MARKERS, cases):
-        axes.plot(column(case_rows, "packing_density"), column(case_rows, "step_median_s"), marker=marker,
-                  label=case_title(case, case_rows))
-    axes.legend(fontsize=8)
+        plot_with_step_range(axes, column(case_rows, "packing_density"), case_rows, marker,
+                             case_title(case, case_rows))
+    axes.legend(title="bars: fastest to slowest timed step", fontsize=8, title_fontsize=8)
     axes.set_xlim(left=0)
     axes.set_ylim(bottom=0)
     save(figure, folder, f"{prefix}-fig09-time-vs-density.png", written)
@@ -305,9 +318,8 @@ def plot_section_43(rows, folder, prefix, subtitle, written, summary):
     figure, axes = new_figure(f"Fig. 11: size ratio against detection time{subtitle}", "size ratio H",
                               "median detection time per step (s)")
     for marker, (case, case_rows) in zip(MARKERS, cases):
-        axes.plot(column(case_rows, "size_ratio"), column(case_rows, "step_median_s"), marker=marker,
-                  label=case_title(case, case_rows))
-    axes.legend(fontsize=8)
+        plot_with_step_range(axes, column(case_rows, "size_ratio"), case_rows, marker, case_title(case, case_rows))
+    axes.legend(title="bars: fastest to slowest timed step", fontsize=8, title_fontsize=8)
     axes.set_xlim(left=0)
     axes.set_ylim(bottom=0)
     save(figure, folder, f"{prefix}-fig11-time-vs-size-ratio.png", written)
