@@ -32,6 +32,15 @@ template <std::floating_point Real>
     return a.item < b.item;
 }
 
+/// entry_less as a function object: standard algorithms inline a functor's call, while a
+/// function pointer costs a call per comparison.
+struct EntryLess {
+    template <std::floating_point Real>
+    bool operator()(const AxisEntry<Real>& a, const AxisEntry<Real>& b) const noexcept {
+        return entry_less(a, b);
+    }
+};
+
 [[nodiscard]] constexpr Item end_of(Item item) noexcept { return item & 1U; }
 
 }  // namespace smb::detail

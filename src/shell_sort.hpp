@@ -68,7 +68,7 @@ DisWork diminishing_increment_sort(std::span<AxisEntry<Real>> list, int incremen
         const bool finished = gapped_insertion_pass(list, gap, budget, pass_moves);
         moves += pass_moves;
         if (!finished) {
-            std::sort(list.begin(), list.end(), entry_less<Real>);
+            std::sort(list.begin(), list.end(), EntryLess{});
             work.fell_back = true;
             return work;
         }

@@ -94,7 +94,7 @@ void regroup_by_parent_segment(std::span<const AxisEntry<Real>> list,
     for (std::size_t j = 0; j < new_sections; ++j) {
         auto arrived_first = stacks.begin() + stack_begin[j];
         auto arrived_last = stacks.begin() + stack_begin[j + 1];
-        std::sort(arrived_first, arrived_last, entry_less<Real>);
+        std::sort(arrived_first, arrived_last, EntryLess{});
         std::size_t write = new_section_begin[j];
         if (j < old_sections) {
             for (std::uint32_t i = old_section_begin[j]; i < old_section_begin[j + 1]; ++i) {

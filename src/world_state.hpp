@@ -140,10 +140,10 @@ DetectStats WorldState<Real, Dim>::detect(const PairSink& sink) {
                 // Step 1 of Section 3: the first list is one section; arrivals are merged in
                 // sorted, then DIS restores the order that the motion disturbed.
                 if (!arrivals_.empty()) {
-                    std::sort(arrivals_.begin(), arrivals_.end(), entry_less<Real>);
+                    std::sort(arrivals_.begin(), arrivals_.end(), EntryLess{});
                     spare_.resize(level.list.size() + arrivals_.size());
                     std::merge(level.list.begin(), level.list.end(), arrivals_.begin(),
-                               arrivals_.end(), spare_.begin(), entry_less<Real>);
+                               arrivals_.end(), spare_.begin(), EntryLess{});
                     level.list.swap(spare_);
                 }
                 level.section_begin.assign({0U, static_cast<std::uint32_t>(level.list.size())});
