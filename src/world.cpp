@@ -1,5 +1,6 @@
 #include "smb/world.hpp"
 
+#include <string>
 #include <utility>
 
 #include "world_state.hpp"
@@ -83,7 +84,14 @@ const WorldSettings& World<Real, Dim>::settings() const noexcept {
 template <std::floating_point Real, int Dim>
 DetectStats World<Real, Dim>::detect(std::vector<Pair>& pairs) {
     pairs.clear();
-    return state_->detect([&pairs](std::span<const Pair> chunk) {
+    const std::size_t limit = state_->settings().max_pairs_held;
+    return state_->detect([&pairs, limit](std::span<const Pair> chunk) {
+        if (chunk.size() > limit - pairs.size()) {
+            pairs.clear();
+            throw PairLimitError("detect: more than " + std::to_string(limit) +
+                                 " overlapping pairs (WorldSettings::max_pairs_held); use "
+                                 "detect(sink) to consume them in chunks");
+        }
         pairs.insert(pairs.end(), chunk.begin(), chunk.end());
     });
 }

@@ -5,3 +5,6 @@ foreach(concept shell_sort axial_cut singular_regroup paper_example)
     target_include_directories(test_${concept} PRIVATE ${PROJECT_SOURCE_DIR}/src)
   endif()
 endforeach()
+
+# Public-API tests of the lead's own (pair limits and streaming).
+smb_add_gtest(NAME test_pair_limit SOURCES test_pair_limit.cpp)

@@ -19,7 +19,7 @@ public:
     using Error::Error;
 };
 
-/// An id that is not in the world (remove, update) .
+/// An id that is not in the world (remove, update).
 class UnknownIdError : public Error {
 public:
     using Error::Error;
@@ -27,6 +27,13 @@ public:
 
 /// An id that is already in the world (insert), or given twice in one batch.
 class DuplicateIdError : public Error {
+public:
+    using Error::Error;
+};
+
+/// detect(std::vector<Pair>&) found more pairs than WorldSettings::max_pairs_held. The world
+/// stays valid; detect(sink) streams any number of pairs.
+class PairLimitError : public Error {
 public:
     using Error::Error;
 };

@@ -13,6 +13,11 @@ struct WorldSettings {
 
     /// Number of pairs handed to a PairSink in one call of detect(sink).
     std::size_t pair_chunk_size = 4096;
+
+    /// Most pairs detect(std::vector<Pair>&) may collect (2^28 pairs are 4 GiB). Past it, it
+    /// throws PairLimitError instead of exhausting memory; detect(sink) has no limit, since the
+    /// caller consumes the pairs chunk by chunk. 100 000 identical boxes make 5·10^9 pairs.
+    std::size_t max_pairs_held = std::size_t{1} << 28;
 };
 
 }  // namespace smb

@@ -86,9 +86,12 @@ public:
     [[nodiscard]] std::size_t size() const noexcept;
     [[nodiscard]] const WorldSettings& settings() const noexcept;
 
-    /// Reports every overlapping pair into `pairs` (cleared first).
+    /// Reports every overlapping pair into `pairs` (cleared first). Throws PairLimitError when
+    /// there are more than settings().max_pairs_held pairs.
     DetectStats detect(std::vector<Pair>& pairs);
-    /// Reports every overlapping pair to `sink`, in chunks of settings().pair_chunk_size.
+    /// Reports every overlapping pair to `sink`, in chunks of settings().pair_chunk_size. An
+    /// exception thrown by the sink ends the detection and propagates; the world stays valid and
+    /// the next detect() reports everything again.
     DetectStats detect(const PairSink& sink);
 
     /// Statistics of the last detect() call.
