@@ -134,6 +134,10 @@ def main():
     parser.add_argument("--families", default="", help="comma-separated subset of scene families")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--output", default="", help="base name of the result files (default: the mode)")
+    parser.add_argument("--predict-from", default="",
+                        help="a .jsonl of earlier runs to predict first sizes from (e.g. a previous part)")
+    parser.add_argument("--limit", type=float, default=0,
+                        help="skip a run predicted to take longer, in seconds (default: the mode's)")
     parser.add_argument("--results-dir", default=os.path.join(os.path.dirname(__file__), "..", "bench", "results"))
     args = parser.parse_args()
 
@@ -144,10 +148,23 @@ def main():
         methods = [m for m in methods if m[0] in wanted or m[0] == "smb"]
     families = set(args.families.split(",")) if args.families else None
     skip_above, timeout = LIMITS[args.mode]
+    if args.limit > 0:
+        skip_above = args.limit
     out_dir = os.path.join(args.results_dir, args.machine)
     os.makedirs(out_dir, exist_ok=True)
 
     rows, raw_lines, all_problems = [], [], []
+    # The largest run of each (method, dim) so far in any scene: predicts the first size of a
+    # scene family, where the family itself has no smaller run yet.
+    largest_run = {}
+    if args.predict_from:
+        with open(args.predict_from) as handle:
+            for line in handle:
+                if line.strip():
+                    earlier = json.loads(line)
+                    key = (earlier["method"], earlier["dim"])
+                    if key not in largest_run or largest_run[key]["boxes"] <= earlier["boxes"]:
+                        largest_run[key] = earlier
     for family, dims, counts, update_factors, steps in SUITES[args.mode]:
         if families and family not in families:
             continue
@@ -168,10 +185,12 @@ def main():
                         if name in gave_up:
                             skipped.append((name, gave_up[name]))
                             continue
-                        if name in previous:
-                            guess = predicted_seconds(name, previous[name], boxes, steps)
+                        basis = previous.get(name) or largest_run.get((name, dim))
+                        if basis is not None and basis["boxes"] < boxes:
+                            guess = predicted_seconds(name, basis, boxes, steps)
                             if guess > skip_above:
-                                reason = (f"predicted {guess:.0f} s from {previous[name]['boxes']} boxes "
+                                where = "" if name in previous else f" of {basis['family']}"
+                                reason = (f"predicted {guess:.0f} s from {basis['boxes']} boxes{where} "
                                           f"(limit {skip_above:.0f} s)")
                                 gave_up[name] = reason
                                 skipped.append((name, reason))
@@ -182,6 +201,8 @@ def main():
                             skipped.append((name, why))
                             continue
                         previous[name] = result
+                        if (name, dim) not in largest_run or largest_run[(name, dim)]["boxes"] <= boxes:
+                            largest_run[(name, dim)] = result
                         results.append(result)
                     problems = check_agreement(results)
                     all_problems += [f"[{label}] {p}" for p in problems]

@@ -41,7 +41,8 @@ public:
     const SceneStep<Dim>& advance() override {
         removed_ids_.clear();
         std::size_t first_inserted = 0;
-        if (step_.index == 0 && ids_.empty()) {
+        if (!started_) {
+            started_ = true;
             append_new(count_);
         } else {
             std::uniform_real_distribution<double> fraction(-update_factor_, update_factor_);
@@ -135,6 +136,7 @@ private:
     double update_factor_;
     std::mt19937_64 rng_;
     Placement place_;
+    bool started_ = false;
     BoxId next_id_ = 0;
     std::vector<BoxId> ids_;
     std::vector<PlacedBox<Dim>> placed_;
