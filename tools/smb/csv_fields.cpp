@@ -11,10 +11,22 @@ namespace smb::io {
 
 namespace {
 
+// Bytes outside printable ASCII are shown as \xHH: a NUL would otherwise cut the message
+// short (what() is a C string) and other control bytes would garble the terminal.
 std::string quoted(std::string_view text) {
     constexpr std::size_t shown = 40;
+    constexpr char hex_digits[] = "0123456789abcdef";
     std::string result = "'";
-    result.append(text.substr(0, shown));
+    for (const char c : text.substr(0, shown)) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte >= 0x20 && byte < 0x7f) {
+            result += c;
+        } else {
+            result += "\\x";
+            result += hex_digits[byte >> 4];
+            result += hex_digits[byte & 0xf];
+        }
+    }
     if (text.size() > shown) result += "...";
     result += "'";
     return result;
