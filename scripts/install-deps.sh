@@ -15,6 +15,9 @@ packages=(
   libfmt-dev
   python3-numpy
   python3-matplotlib
+  # libFuzzer targets (fuzz/, scripts/fuzz.sh): clang with its sanitizer and fuzzer runtimes
+  clang-14
+  libclang-rt-14-dev
   # peers of the side-by-side benchmark (bench/peers/); optional, the build skips any missing
   libbullet-dev
   libbox2d-dev

@@ -3,7 +3,8 @@
 #   1. Release build with warnings as errors and the SMB invariant checks on (build-ci/),
 #      every test;
 #   2. address + undefined-behaviour sanitizer build (build-ci-asan/), every test but the
-#      consumer proof, which builds its own uninstrumented copies and was proven in step 1.
+#      consumer proof, which builds its own uninstrumented copies and was proven in step 1;
+#   3. a minute of libFuzzer on each fuzz target (build-ci-fuzz/), where clang has libFuzzer.
 # Exits non-zero if any build or test fails. SMB_CI_BUILD_DIR and SMB_CI_ASAN_BUILD_DIR pick
 # other build folders, SMB_JOBS the parallelism (default 2).
 set -euo pipefail
@@ -29,5 +30,18 @@ cmake --build "$asan_dir" --parallel "$jobs"
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1} \
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
   ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -LE consumer
+
+echo "== Short fuzzing (libFuzzer, ASan + UBSan) =="
+# About a minute per target (SMB_FUZZ_SECONDS); skipped where clang cannot link libFuzzer.
+fuzz_probe='extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }'
+if command -v clang++ >/dev/null &&
+   echo "$fuzz_probe" | clang++ -fsanitize=fuzzer -x c++ - -o /dev/null 2>/dev/null; then
+  for target in scene_csv world_ops; do
+    SMB_FUZZ_BUILD_DIR=${SMB_CI_FUZZ_BUILD_DIR:-build-ci-fuzz} \
+      bash scripts/fuzz.sh "$target" "${SMB_FUZZ_SECONDS:-60}"
+  done
+else
+  echo "skipped: clang++ with libFuzzer not available"
+fi
 
 echo "== all checks passed =="
