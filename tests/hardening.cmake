@@ -12,6 +12,11 @@ if(TARGET smb_cli)
     SMB_CLI_DATA_DIR="${CMAKE_CURRENT_LIST_DIR}/data/cli")
   add_dependencies(test_hostile_files smb_cli)
 endif()
+if(TARGET smb_io)
+  smb_add_gtest(NAME test_hostile_pair_sorter
+    SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_hostile_pair_sorter.cpp
+    LIBS smb_io)
+endif()
 
 # Every committed fuzz input (seed corpora and the regressions the fuzzers found) replayed
 # through the targets' own checks, in every build, with or without clang.

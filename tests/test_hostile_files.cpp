@@ -139,5 +139,35 @@ INSTANTIATE_TEST_SUITE_P(
                          "0,1,2\n18446744073709551615,1,2\n"}),
     [](const auto& instance) { return std::string(instance.param.name); });
 
+// A pair explosion: every box of a frame overlaps every other. With a small allowance the frame
+// is sorted through temporary files and must still come out exact and in order.
+TEST(HostileFiles, PairExplosionIsSortedThroughTemporaryFiles) {
+    constexpr int box_count = 300;  // 44 850 pairs
+    std::string scene = header_3d;
+    std::string expected = "frame,a,b\n";
+    for (int frame = 0; frame < 2; ++frame) {
+        for (int id = box_count - 1; id >= 0; --id)
+            scene += std::to_string(frame) + "," + std::to_string(id) + ",0,0,0,1,1,1\n";
+        for (int a = 0; a < box_count; ++a)
+            for (int b = a + 1; b < box_count; ++b)
+                expected += std::to_string(frame) + "," + std::to_string(a) + "," +
+                            std::to_string(b) + "\n";
+    }
+    TempFolder folder;
+    write_file(folder / "scene.csv", scene);
+    const auto result = run_smb(
+        folder, {"pairs", "-i", "scene.csv", "-o", "pairs.csv", "--pairs-in-memory", "1000"});
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_TRUE(read_file(folder / "pairs.csv") == expected);
+}
+
+TEST(HostileFiles, PairsInMemoryBelowTwoIsRejected) {
+    TempFolder folder;
+    write_file(folder / "scene.csv", std::string(header_2d));
+    const auto result = run_smb(folder, {"pairs", "-i", "scene.csv", "--pairs-in-memory", "1"});
+    EXPECT_NE(result.status, 0);
+    EXPECT_FALSE(result.err.empty());
+}
+
 }  // namespace
 }  // namespace smb::cli_test

@@ -1,11 +1,14 @@
 #include "pairs_command.hpp"
 
+#include <limits>
+#include <span>
 #include <vector>
 
 #include "file_streams.hpp"
 #include "frame_diff.hpp"
 #include "pair_csv.hpp"
 #include "scene_csv.hpp"
+#include "spilling_pair_sorter.hpp"
 #include "smb/world.hpp"
 
 namespace smb::cli {
@@ -14,14 +17,17 @@ namespace {
 
 // One World follows the scene through all its frames, so that detection profits from the small
 // motion between frames exactly as a simulation would; the file is read one frame at a time.
+// A frame's pairs stream from the world into a sorter that spills to temporary files past
+// `pairs_in_memory`, so that a frame with billions of pairs costs disk, not memory.
 template <int Dim>
-void write_pairs_of_every_frame(io::SceneReader& reader, std::ostream& out) {
+void write_pairs_of_every_frame(io::SceneReader& reader, std::ostream& out,
+                                std::size_t pairs_in_memory) {
     World<double, Dim> world;
+    io::SpillingPairSorter sorter(pairs_in_memory);
     io::PairWriter writer(out);
     io::SceneFrame<Dim> frame;
     io::FrameChanges<Dim> changes;
     std::vector<BoxId> previous_ids;
-    std::vector<Pair> pairs;
     bool first_frame = true;
     std::uint64_t previous_number = 0;
 
@@ -36,9 +42,9 @@ void write_pairs_of_every_frame(io::SceneReader& reader, std::ostream& out) {
         world.update(changes.updated_ids, changes.updated_boxes);
         world.insert(changes.inserted_ids, changes.inserted_boxes);
 
-        world.detect(pairs);
-        sort_pairs(pairs);
-        writer.write_frame(frame.number, pairs);
+        world.detect([&](std::span<const Pair> chunk) { sorter.add(chunk); });
+        sorter.finish(
+            [&](std::span<const Pair> sorted) { writer.write_frame(frame.number, sorted); });
 
         previous_ids.swap(frame.ids);
         previous_number = frame.number;
@@ -59,6 +65,11 @@ PairsCommand::PairsCommand(CLI::App& parent)
                      "pair CSV to write ('-' for standard output); written to a temporary file "
                      "and renamed only on success")
         ->capture_default_str();
+    app_->add_option("--pairs-in-memory", pairs_in_memory_,
+                     "most pairs of one frame held in memory (16 bytes each); a frame with more "
+                     "is sorted through temporary files")
+        ->check(CLI::Range(std::size_t{2}, std::numeric_limits<std::size_t>::max()))
+        ->capture_default_str();
 }
 
 int PairsCommand::run() const {
@@ -66,9 +77,9 @@ int PairsCommand::run() const {
     io::SceneReader reader(input.stream(), input.name());
     io::OutputFile output(output_);
     if (reader.dimension() == 2) {
-        write_pairs_of_every_frame<2>(reader, output.stream());
+        write_pairs_of_every_frame<2>(reader, output.stream(), pairs_in_memory_);
     } else {
-        write_pairs_of_every_frame<3>(reader, output.stream());
+        write_pairs_of_every_frame<3>(reader, output.stream(), pairs_in_memory_);
     }
     output.commit();
     return 0;

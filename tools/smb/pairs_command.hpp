@@ -1,6 +1,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstddef>
 #include <string>
 
 namespace smb::cli {
@@ -18,6 +19,7 @@ private:
     CLI::App* app_;
     std::string input_ = "-";
     std::string output_ = "-";
+    std::size_t pairs_in_memory_ = std::size_t{1} << 24;  ///< 256 MiB of pairs
 };
 
 }  // namespace smb::cli
