@@ -1,5 +1,5 @@
 # Hardening: hostile-input tests of the smb tool, the libFuzzer targets (fuzz/) and the soak and
-# scale program (bench/soak/). Included by tests/CMakeLists.txt, which defines smb_add_gtest().
+# scale programs (bench/soak/). Included by tests/CMakeLists.txt, which defines smb_add_gtest().
 
 option(SMB_BUILD_FUZZERS "Build the libFuzzer targets in fuzz/ (needs clang++ and SMB_SANITIZE)" OFF)
 
@@ -34,6 +34,9 @@ if(TARGET smb_workload)
   target_link_libraries(smb_soak PRIVATE smb::smb smb_workload)
   smb_configure_target(smb_soak)
 endif()
+add_executable(smb_explosion ${PROJECT_SOURCE_DIR}/bench/soak/smb_explosion.cpp)
+target_link_libraries(smb_explosion PRIVATE smb::smb)
+smb_configure_target(smb_explosion)
 
 if(SMB_BUILD_FUZZERS)
   add_subdirectory(${PROJECT_SOURCE_DIR}/fuzz ${PROJECT_BINARY_DIR}/fuzz)
