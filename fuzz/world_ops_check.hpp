@@ -12,7 +12,6 @@
 // call the world must be unchanged (size, every box, and the next detection).
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -20,9 +19,9 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
-#include <span>
 #include <vector>
 
 #include "smb/errors.hpp"
