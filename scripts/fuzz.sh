@@ -48,9 +48,16 @@ if [[ -f fuzz/$target.dict ]]; then
   dictionary=(-dict="fuzz/$target.dict")
 fi
 
-echo "== fuzz_$target for ${seconds}s =="
+# SMB_FUZZ_RUNS=N makes the run reproducible: exactly N inputs from seed 1 (the time is then
+# only a cap). CI uses it, so that what passed here passes there.
+repeatable=()
+if [[ -n ${SMB_FUZZ_RUNS:-} ]]; then
+  repeatable=(-runs="$SMB_FUZZ_RUNS" -seed=1)
+fi
+
+echo "== fuzz_$target for ${seconds}s${SMB_FUZZ_RUNS:+ or $SMB_FUZZ_RUNS runs} =="
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1} \
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
   "$build_dir/fuzz/fuzz_$target" -max_total_time="$seconds" -max_len="$max_len" \
   -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-  -artifact_prefix="$artifact_dir/" "${dictionary[@]}" "$work_dir" "${seed_dirs[@]}"
+  -artifact_prefix="$artifact_dir/" "${dictionary[@]}" "${repeatable[@]}" "$work_dir" "${seed_dirs[@]}"

@@ -32,13 +32,16 @@ UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
   ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -LE consumer
 
 echo "== Short fuzzing (libFuzzer, ASan + UBSan) =="
-# About a minute per target (SMB_FUZZ_SECONDS); skipped where clang cannot link libFuzzer.
+# 40 000 inputs from seed 1 per target (about a minute; SMB_FUZZ_RUNS, capped at
+# SMB_FUZZ_SECONDS), so the run is the same on every machine; skipped where clang cannot link
+# libFuzzer.
 fuzz_probe='extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }'
 if command -v clang++ >/dev/null &&
    echo "$fuzz_probe" | clang++ -fsanitize=fuzzer -x c++ - -o /dev/null 2>/dev/null; then
   for target in scene_csv world_ops; do
     SMB_FUZZ_BUILD_DIR=${SMB_CI_FUZZ_BUILD_DIR:-build-ci-fuzz} \
-      bash scripts/fuzz.sh "$target" "${SMB_FUZZ_SECONDS:-60}"
+    SMB_FUZZ_RUNS=${SMB_FUZZ_RUNS:-40000} \
+      bash scripts/fuzz.sh "$target" "${SMB_FUZZ_SECONDS:-180}"
   done
 else
   echo "skipped: clang++ with libFuzzer not available"
