@@ -87,7 +87,7 @@ DetectStats World<Real, Dim>::detect(std::vector<Pair>& pairs) {
     const std::size_t limit = state_->settings().max_pairs_held;
     return state_->detect([&pairs, limit](std::span<const Pair> chunk) {
         if (chunk.size() > limit - pairs.size()) {
-            pairs.clear();
+            std::vector<Pair>().swap(pairs);  // give the memory back, not just the contents
             throw PairLimitError("detect: more than " + std::to_string(limit) +
                                  " overlapping pairs (WorldSettings::max_pairs_held); use "
                                  "detect(sink) to consume them in chunks");

@@ -23,6 +23,7 @@ TEST(PairLimit, VectorDetectionThrowsPastTheLimitAndSinkStreams) {
     std::vector<Pair> pairs;
     EXPECT_THROW(world.detect(pairs), PairLimitError);
     EXPECT_TRUE(pairs.empty()) << "no partial list that looks complete";
+    EXPECT_EQ(pairs.capacity(), 0U) << "the refused pairs' memory is given back";
 
     std::size_t streamed = 0;
     std::size_t largest_chunk = 0;

@@ -25,7 +25,8 @@ public:
     using Error::Error;
 };
 
-/// An id that is already in the world (insert), or given twice in one batch.
+/// An id that is already in the world (insert), or named twice in one insert or remove batch.
+/// (An update batch that names an id twice is accepted: the last of its boxes wins.)
 class DuplicateIdError : public Error {
 public:
     using Error::Error;

@@ -69,7 +69,8 @@ public:
 
     /// Moves or resizes one box. Throws UnknownIdError or InvalidBoxError.
     void update(BoxId id, const box_type& box);
-    /// Moves or resizes many boxes at once (all or none).
+    /// Moves or resizes many boxes at once (all or none). An id named twice gets the last of
+    /// its boxes: checking for repeats would cost a hash set on the hot path of every step.
     void update(std::span<const BoxId> ids, std::span<const box_type> boxes);
 
     /// Makes the world hold exactly `boxes`, box i under id i: the way array-based
