@@ -5,8 +5,6 @@
 //
 //   smb_explosion [boxes]   (default 100000)
 
-#include <sys/resource.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdint>
@@ -16,23 +14,15 @@
 #include <string>
 #include <vector>
 
+#include "process_memory.hpp"
 #include "smb/world.hpp"
 
 namespace {
 
-std::size_t resident_bytes() {
-    std::ifstream statm("/proc/self/statm");
-    std::size_t total_pages = 0;
-    std::size_t resident_pages = 0;
-    statm >> total_pages >> resident_pages;
-    return resident_pages * static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
-}
+using smb::soak::peak_resident_bytes;
+using smb::soak::resident_bytes;
 
-std::size_t peak_resident_bytes() {
-    rusage usage{};
-    ::getrusage(RUSAGE_SELF, &usage);
-    return static_cast<std::size_t>(usage.ru_maxrss) * 1024;
-}
+
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

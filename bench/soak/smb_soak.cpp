@@ -13,8 +13,6 @@
 //
 // --check-every 0 skips the exact comparison (the scale run); samples are still printed.
 
-#include <sys/resource.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -31,11 +29,15 @@
 #include <string>
 #include <vector>
 
+#include "process_memory.hpp"
 #include "smb/workload/dynamic_environment.hpp"
 #include "smb/workload/reference_grid.hpp"
 #include "smb/world.hpp"
 
 namespace {
+
+using smb::soak::peak_resident_bytes;
+using smb::soak::resident_bytes;
 
 struct SoakOptions {
     int dim = 3;
@@ -84,19 +86,7 @@ SoakOptions parse_options(int argc, char** argv) {
     return options;
 }
 
-std::size_t resident_bytes() {
-    std::ifstream statm("/proc/self/statm");
-    std::size_t total_pages = 0;
-    std::size_t resident_pages = 0;
-    statm >> total_pages >> resident_pages;
-    return resident_pages * static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
-}
 
-std::size_t peak_resident_bytes() {
-    rusage usage{};
-    ::getrusage(RUSAGE_SELF, &usage);
-    return static_cast<std::size_t>(usage.ru_maxrss) * 1024;  // Linux counts in KiB
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
