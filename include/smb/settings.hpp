@@ -4,6 +4,17 @@
 
 namespace smb {
 
+/// How a World finds its pairs. Both are exact and report the same pairs; they differ in speed
+/// and in how closely they follow the paper's data structures (docs/algorithm.md).
+enum class Pipeline {
+    /// The default: the paper's levels of axial cuts, with the cut planes kept from one step to
+    /// the next, so that each level is a linear bucketing pass, and a sweep inside every cell.
+    persistent_cuts,
+    /// The paper's Section 3 as written: corner lists sorted by DIS on every level, cut afresh
+    /// each step, flag matrix and mask array. Slower; kept to reproduce the paper.
+    paper_lists,
+};
+
 /// Tuning of a World. Every field has a default that suits the paper's workloads; a
 /// default-constructed WorldSettings is the recommended start.
 struct WorldSettings {
@@ -18,6 +29,9 @@ struct WorldSettings {
     /// throws PairLimitError instead of exhausting memory; detect(sink) has no limit, since the
     /// caller consumes the pairs chunk by chunk. 100 000 identical boxes make 5·10^9 pairs.
     std::size_t max_pairs_held = std::size_t{1} << 28;
+
+    /// Which pipeline detects the pairs.
+    Pipeline pipeline = Pipeline::persistent_cuts;
 };
 
 }  // namespace smb

@@ -1,0 +1,182 @@
+#pragma once
+// The axial cuts of the persistent-cut pipeline, kept from one detection to the next.
+//
+// Level l cuts along axis Dim-1-l (z, then y, then x in 3D), as the paper's levels do. Every
+// group of level l (a slab for l = 1, a column for l = 2) is cut into the same number k of
+// segments by k-1 cut values, so segment j of a group holds the coordinates v with
+// cut[j-1] <= v < cut[j] (cut[-1] = -inf, cut[k-1] = +inf). Groups are numbered in
+// (slab, column, ...) order: segment j of group g is group g*k + j of the next level, and the
+// cells are the segments of the deepest level.
+//
+// The cut values are the paper's axial cut (equal numbers of boxes per segment) taken once and
+// then kept while the segments stay balanced: boxes move a little each step, so last step's
+// planes still split them about evenly, and keeping them turns the global sort of the paper's
+// first list into a linear bucketing pass. A group is cut again when a segment outgrows the
+// band its last cut allowed; exactness never depends on where the planes lie, only on every
+// part of the pipeline locating a coordinate with the same segment_of().
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+namespace smb::detail {
+
+/// Number of cut values <= value, i.e. the segment holding `value`. Boxes arrive in no particular
+/// order relative to the planes, so a branching search would mispredict on almost every step.
+/// Up to 64 planes a plain count is fastest (no dependent loads; the compiler vectorises it);
+/// beyond, a branch-free binary search.
+template <std::floating_point Real>
+[[nodiscard]] inline std::uint32_t segment_of(std::span<const Real> cuts, Real value) noexcept {
+    std::size_t n = cuts.size();
+    const Real* base = cuts.data();
+    if (n <= 64) {
+        // A counter as wide as Real lets the compiler vectorise the comparisons.
+        using Count = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
+        Count count = 0;
+        for (std::size_t i = 0; i < n; ++i) count += base[i] <= value ? Count{1} : Count{0};
+        return static_cast<std::uint32_t>(count);
+    }
+    while (n > 1) {
+        const std::size_t half = n / 2;
+        base = (base[half] <= value) ? base + half : base;
+        n -= half;
+    }
+    return static_cast<std::uint32_t>(base - cuts.data()) + (*base <= value ? 1U : 0U);
+}
+
+/// segment_of() when the answer is probably `hint` or the segment after it: the entries of a
+/// group arrive in last step's segment order and boxes move little, so the previous entry's
+/// segment (or, for a max, the box's own min segment) is nearly always right.
+template <std::floating_point Real>
+[[nodiscard]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value,
+                                                std::uint32_t hint) noexcept {
+    const std::size_t n = cuts.size();
+    if (hint <= n && (hint == 0 || cuts[hint - 1] <= value)) {
+        if (hint == n || value < cuts[hint]) return hint;
+        if (hint + 1 == n || value < cuts[hint + 1]) return hint + 1;
+    }
+    return segment_of(cuts, value);
+}
+
+template <std::floating_point Real, int Dim>
+class CutTree {
+public:
+    /// Most segments per group: a box's segment range is stored in two 16-bit halves.
+    static constexpr std::uint32_t kMaxSegments = 65535;
+
+    [[nodiscard]] std::uint32_t segments() const noexcept { return k_; }
+    [[nodiscard]] std::size_t groups(int level) const noexcept { return groups_[level]; }
+    [[nodiscard]] std::size_t cells() const noexcept { return groups_[Dim]; }
+
+    /// Sets the number of segments per group; every group forgets its cuts when it changes.
+    void reshape(std::uint32_t segments) {
+        segments = std::clamp<std::uint32_t>(segments, 1, kMaxSegments);
+        if (segments == k_) return;
+        k_ = segments;
+        std::size_t groups = 1;
+        for (int level = 0; level <= Dim; ++level) {
+            groups_[level] = groups;
+            if (level < Dim) {
+                cuts_[level].assign(groups * (k_ - 1), Real{0});
+                limit_[level].assign(groups, 0);  // 0: never cut
+                groups *= k_;
+            }
+        }
+    }
+
+    void forget() {
+        k_ = 0;
+        for (int level = 0; level < Dim; ++level) {
+            cuts_[level] = {};
+            limit_[level] = {};
+        }
+        groups_ = {};
+    }
+
+    [[nodiscard]] std::span<const Real> cuts(int level, std::size_t group) const noexcept {
+        return {cuts_[level].data() + group * (k_ - 1), k_ - 1};
+    }
+
+    /// True when group `group` of `level` must be cut (again) before its boxes are bucketed:
+    /// it was never cut, or its fullest segment holds more than its band allows.
+    [[nodiscard]] bool needs_cut(int level, std::size_t group, std::uint32_t fullest) const noexcept {
+        const std::uint32_t limit = limit_[level][group];
+        return limit == 0 || fullest > limit;
+    }
+    [[nodiscard]] bool was_cut(int level, std::size_t group) const noexcept {
+        return limit_[level][group] != 0;
+    }
+
+    /// The axial cut: `keys` (the lower coordinates of the group's boxes, in any order; they are
+    /// reordered) are split into k segments of equal counts. Equal keys always share a segment,
+    /// since a cut is a coordinate value, so a long run of equal keys may leave segments empty
+    /// and one segment full: the band then tolerates that fullness rather than cutting the same
+    /// run again every step.
+    void cut(int level, std::size_t group, std::span<Real> keys) {
+        Real* out = cuts_[level].data() + group * (k_ - 1);
+        const std::size_t n = keys.size();
+        if (k_ > 1) {
+            if (n == 0) {
+                std::fill(out, out + (k_ - 1), Real{0});
+            } else {
+                // Quantiles by successive selection: each nth_element works on what is left to
+                // the right of the previous quantile, O(n log k) in all.
+                std::size_t from = 0;
+                for (std::uint32_t j = 1; j < k_; ++j) {
+                    const std::size_t rank = std::min(n - 1, (j * n) / k_);
+                    if (rank >= from) {
+                        std::nth_element(keys.begin() + static_cast<std::ptrdiff_t>(from),
+                                         keys.begin() + static_cast<std::ptrdiff_t>(rank), keys.end());
+                        from = rank;
+                    }
+                    out[j - 1] = keys[rank];
+                }
+            }
+        }
+        std::uint32_t fullest = 0;
+        if (k_ > 1 && n > 0) {
+            std::vector<std::uint32_t>& count = count_scratch_;
+            count.assign(k_, 0);
+            const std::span<const Real> planes(out, k_ - 1);
+            for (const Real key : keys) ++count[segment_of(planes, key)];
+            fullest = *std::max_element(count.begin(), count.end());
+        } else {
+            fullest = static_cast<std::uint32_t>(std::min<std::size_t>(n, 0xFFFFFFFFU));
+        }
+        const double even = static_cast<double>(n) / k_;
+        const double band = std::max(2.0 * even, 1.5 * static_cast<double>(fullest)) + 8.0;
+        limit_[level][group] = static_cast<std::uint32_t>(std::min(band, 4.0e9));
+    }
+
+    /// Lower and upper plane of segment `segment` of group `group` (infinite at the ends).
+    [[nodiscard]] Real lower(int level, std::size_t group, std::uint32_t segment) const noexcept {
+        return segment == 0 ? -std::numeric_limits<Real>::infinity()
+                            : cuts_[level][group * (k_ - 1) + segment - 1];
+    }
+    [[nodiscard]] Real upper(int level, std::size_t group, std::uint32_t segment) const noexcept {
+        return segment + 1 == k_ ? std::numeric_limits<Real>::infinity()
+                                 : cuts_[level][group * (k_ - 1) + segment];
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        std::size_t bytes = count_scratch_.capacity() * sizeof(std::uint32_t);
+        for (int level = 0; level < Dim; ++level)
+            bytes += cuts_[level].capacity() * sizeof(Real) + limit_[level].capacity() * sizeof(std::uint32_t);
+        return bytes;
+    }
+
+private:
+    std::uint32_t k_ = 0;
+    std::array<std::size_t, Dim + 1> groups_{};
+    std::array<std::vector<Real>, Dim> cuts_;
+    std::array<std::vector<std::uint32_t>, Dim> limit_;  // band of each group; 0 = not cut yet
+    std::vector<std::uint32_t> count_scratch_;
+};
+
+}  // namespace smb::detail

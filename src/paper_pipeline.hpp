@@ -1,0 +1,413 @@
+#pragma once
+// The paper's own pipeline (its Sections 2.4 and 3), chosen by WorldSettings::pipeline =
+// Pipeline::paper_lists. It keeps the paper's data structures (corner lists sorted by DIS on
+// every level, flag matrix, mask array) and is what docs/reproduction.md measures against the
+// paper; the default pipeline (persistent_cut_pipeline.hpp) is the faster one. Generalised from
+// the 2D example to Dim levels: level l sorts the projections on axis Dim-1-l (y then x in 2D, z then
+// y then x in 3D), grouped by the segments of level l-1. docs/algorithm.md maps every step of
+// the paper to the functions below.
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "assert.hpp"
+#include "axial_cut.hpp"
+#include "axis_entry.hpp"
+#include "box_store.hpp"
+#include "cell_check.hpp"
+#include "cell_lists.hpp"
+#include "global_local_map.hpp"
+#include "mask_array.hpp"
+#include "oversized_sweep.hpp"
+#include "shell_sort.hpp"
+#include "singular_regroup.hpp"
+#include "smb/settings.hpp"
+#include "smb/stats.hpp"
+#include "smb/world.hpp"
+
+namespace smb::detail {
+
+template <std::floating_point Real, int Dim>
+class PaperPipeline {
+public:
+    PaperPipeline(const BoxStore<Real, Dim>* store, const WorldSettings* settings)
+        : store_(store), settings_(settings) {}
+
+    /// Renumbers every list after BoxStore::compact() dropped removed slots, keeping each
+    /// list's order (the paper's remark 3 of Section 2.4: renumber, never rebuild).
+    void fold_removals(std::span<const Slot> new_slot);
+
+    template <class Report>
+    void detect(Report& report, DetectStats& stats);
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept;
+
+private:
+    using Entry = AxisEntry<Real>;
+    using Clock = std::chrono::steady_clock;
+
+    /// One level of the cut: the persistent list of the paper (Y1, X12 in 2D; Z1, Y12, X123 in
+    /// 3D) and the per-step arrays derived from it.
+    struct Level {
+        std::vector<Entry> list;                  // grouped by section, sorted within each
+        std::vector<std::uint32_t> section_begin; // offsets of the sections in `list`
+        std::vector<std::uint32_t> segment_begin; // offsets of the segments (after the cut)
+        std::vector<SegmentId> segment_of;        // index array: segment of every item id
+        DisController dis;
+    };
+
+    static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
+
+    void choose_cuts();
+    void refresh_keys(Level& level, int depth);
+    void collect_arrivals(int depth);
+    DisWork sort_level(Level& level);
+    void cut_level(Level& level);
+    void find_oversized();
+    void release_oversized_scratch();
+    void build_cell_lists();
+    template <class Report>
+    void check_cells(Report& report);
+    void check_invariants() const;
+
+    const BoxStore<Real, Dim>* store_;
+    const WorldSettings* settings_;
+
+    std::array<Level, Dim> levels_;
+    std::array<std::vector<Item>, Dim - 1> cell_lists_;  // the paper's Y2 (2D); Y2, Z2 (3D)
+    std::vector<std::uint32_t> cell_cursor_;
+    std::vector<Entry> arrivals_;
+    std::vector<Entry> spare_;  // second buffer of the regrouping, shared by the levels
+    std::vector<std::uint8_t> oversized_;
+    std::size_t oversized_count_ = 0;
+    RegroupScratch<Real> regroup_;
+    MaskArray mask_;
+    GlobalLocalMap map_;
+    CellChecker<Real, Dim> checker_;
+    OversizedSweep<Real, Dim> oversized_sweep_;
+
+    std::size_t listed_ = 0;   // slots [0, listed_) are in the lists; later ones arrived since
+    SegmentId cuts_ = 0;       // segments per section on every level
+};
+
+template <std::floating_point Real, int Dim>
+template <class Report>
+void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
+    auto seconds_since = [](Clock::time_point t) {
+        return std::chrono::duration<double>(Clock::now() - t).count();
+    };
+    const std::size_t n = store_->slot_count();
+    if (n > 0) {
+        choose_cuts();
+        auto phase = Clock::now();
+        double sorting = 0;
+        for (int depth = 0; depth < Dim; ++depth) {
+            Level& level = levels_[depth];
+            refresh_keys(level, depth);
+            collect_arrivals(depth);
+            if (depth == 0) {
+                // Step 1 of Section 3: the first list is one section; arrivals are merged in
+                // sorted, then DIS restores the order that the motion disturbed.
+                if (!arrivals_.empty()) {
+                    std::sort(arrivals_.begin(), arrivals_.end(), EntryLess{});
+                    spare_.resize(level.list.size() + arrivals_.size());
+                    std::merge(level.list.begin(), level.list.end(), arrivals_.begin(),
+                               arrivals_.end(), spare_.begin(), EntryLess{});
+                    level.list.swap(spare_);
+                }
+                level.section_begin.assign({0U, static_cast<std::uint32_t>(level.list.size())});
+            } else {
+                // Steps 4-7 of Section 3: regroup by the parent level's cut.
+                const Level& parent = levels_[depth - 1];
+                std::vector<std::uint32_t> new_begin(parent.segment_begin.size());
+                for (std::size_t j = 0; j < new_begin.size(); ++j) new_begin[j] = 2 * parent.segment_begin[j];
+                regroup_by_parent_segment<Real>(level.list, level.section_begin, arrivals_,
+                                                parent.segment_of, new_begin, spare_, regroup_);
+                level.list.swap(spare_);
+                level.section_begin.swap(new_begin);
+            }
+            SMB_ASSERT(level.list.size() == (n << (depth + 1)), "a list lost or gained items");
+            const auto sort_start = Clock::now();
+            const DisWork work = sort_level(level);
+            sorting += seconds_since(sort_start);
+            level.dis.learn(work);
+            stats.sort_moves += work.moves();
+            cut_level(level);
+        }
+        listed_ = n;
+        release_oversized_scratch();
+        find_oversized();
+        build_cell_lists();
+        stats.sort_seconds = sorting;
+        stats.cut_regroup_seconds = seconds_since(phase) - sorting;
+        stats.cells = levels_[Dim - 1].segment_begin.size() - 1;
+        stats.oversized_boxes = oversized_count_;
+
+        phase = Clock::now();
+        check_cells(report);
+        if (oversized_count_ > 0) {
+            oversized_sweep_.run(levels_[0].list, oversized_, store_->boxes(), report);
+        }
+        stats.check_seconds = seconds_since(phase);
+#ifdef SMB_VALIDATE
+        check_invariants();
+#endif
+    } else {
+        for (auto& level : levels_) {
+            level.list.clear();
+            level.section_begin.clear();
+        }
+        listed_ = 0;
+    }
+}
+
+template <std::floating_point Real, int Dim>
+void PaperPipeline<Real, Dim>::fold_removals(std::span<const Slot> new_slot) {
+    std::size_t still_listed = 0;
+    for (std::size_t s = 0; s < listed_; ++s) still_listed += new_slot[s] != kNoSlot ? 1 : 0;
+    for (int depth = 0; depth < Dim; ++depth) {
+        Level& level = levels_[depth];
+        const int shift = depth + 1;
+        const Item low_bits = (Item{1} << shift) - 1;
+        std::size_t write = 0;
+        for (std::size_t j = 0; j + 1 < level.section_begin.size(); ++j) {
+            const std::uint32_t first = level.section_begin[j];
+            const std::uint32_t last = level.section_begin[j + 1];
+            level.section_begin[j] = static_cast<std::uint32_t>(write);
+            for (std::uint32_t i = first; i < last; ++i) {
+                const Entry entry = level.list[i];
+                const Slot slot = new_slot[entry.item >> shift];
+                if (slot == kNoSlot) continue;
+                level.list[write++] = Entry{entry.key, (slot << shift) | (entry.item & low_bits)};
+            }
+        }
+        if (!level.section_begin.empty()) level.section_begin.back() = static_cast<std::uint32_t>(write);
+        level.list.resize(write);
+    }
+    listed_ = still_listed;
+}
+
+/// Number of segments per section: about (N / target population)^(1/Dim) on every level, so
+/// that cells hold about the target number of boxes. It changes only when N has moved by more
+/// than a quarter from the value it was chosen for, because a new count renumbers every section
+/// and turns every item singular for one step.
+template <std::floating_point Real, int Dim>
+void PaperPipeline<Real, Dim>::choose_cuts() {
+    const double cells = static_cast<double>(store_->slot_count()) /
+                         static_cast<double>(settings_->target_cell_population);
+    const double ideal = std::max(1.0, std::pow(cells, 1.0 / Dim));
+    const double current = static_cast<double>(cuts_);
+    if (cuts_ == 0 || ideal > 1.25 * current || ideal < 0.8 * current) {
+        cuts_ = static_cast<SegmentId>(std::lround(ideal));
+    }
+}
+
+template <std::floating_point Real, int Dim>
+void PaperPipeline<Real, Dim>::refresh_keys(Level& level, int depth) {
+    const auto boxes = store_->boxes();
+    const int axis = axis_of_level(depth);
+    const int shift = depth + 1;
+    for (Entry& entry : level.list) {
+        const auto& box = boxes[entry.item >> shift];
+        entry.key = end_of(entry.item) == 0 ? box.min[axis] : box.max[axis];
+    }
+}
+
+/// The items of the boxes inserted since the last detection, for level `depth`.
+template <std::floating_point Real, int Dim>
+void PaperPipeline<Real, Dim>::collect_arrivals(int depth) {
+    arrivals_.clear();
+    const auto boxes = store_->boxes();
+    const int axis = axis_of_level(depth);
+    const int shift = depth + 1;
+    for (std::size_t slot = listed_; slot < boxes.size(); ++slot) {
+        const Item first = static_cast<Item>(slot) << shift;
+        for (Item item = first; item < first + (Item{1} << shift); ++item) {
+            const auto& box = boxes[slot];
+            arrivals_.push_back(Entry{end_of(item) == 0 ? box.min[axis] : box.max[axis], item});
+        }
+    }
+}
+
+template <std::floating_point Real, int Dim>
+DisWork PaperPipeline<Real, Dim>::sort_level(Level& level) {
+    DisWork work;
+    const int increments = level.dis.increments();
+    for (std::size_t j = 0; j + 1 < level.section_begin.size(); ++j) {
+        const std::span<Entry> section(level.list.data() + level.section_begin[j],
+                                       level.section_begin[j + 1] - level.section_begin[j]);
+        work += diminishing_increment_sort<Real>(section, increments);
+    }
+    return work;
+}
+
+template <std::floating_point Real, int Dim>
+void PaperPipeline<Real, Dim>::cut_level(Level& level) {
+    level.segment_of.resize(level.list.size());
+    level.segment_begin.clear();
+    const std::size_t sections = level.section_begin.size() - 1;
+    level.segment_begin.reserve(sections * cuts_ + 1);
+    for (std::size_t j = 0; j < sections; ++j) {
+        const std::uint32_t first = level.section_begin[j];
+        const std::span<const Entry> section(level.list.data() + first, level.section_begin[j + 1] - first);
+        cut_section<Real>(section, first, cuts_, static_cast<SegmentId>(j * cuts_), level.segment_of,
+                          level.segment_begin);
+    }
+    level.segment_begin.push_back(static_cast<std::uint32_t>(level.list.size()));
+}
+
+/// The first detection (and any step that inserts or moves many boxes) fills the arrival and
+/// stack buffers with up to 2^Dim items per box. Keeping that capacity would double the memory
+/// of a world whose later steps change little, so a buffer much larger than this step needed is
+/// given back; steady steps that need about the same amount each time keep theirs.
+template <std::floating_point Real, int Dim>
+void PaperPipeline<Real, Dim>::release_oversized_scratch() {
+    auto trim = [](auto& buffer) {
+        if (buffer.capacity() > 64 * 1024 && buffer.capacity() > 4 * buffer.size()) {
+            std::remove_reference_t<decltype(buffer)> smaller;
+            smaller.reserve(2 * buffer.size());
+            smaller.assign(buffer.begin(), buffer.end());
+            buffer.swap(smaller);
+        }
+    };
+    trim(arrivals_);
+    regroup_.trim(trim);
+}
+
+/// A box is oversized when, on some level and for some of its faces, its min and max fall more
+/// than one segment apart: the segment between would not hold it (the paper's Fig. 5).
+template <std::floating_point Real, int Dim>
+void PaperPipeline<Real, Dim>::find_oversized() {
+    const std::size_t n = store_->slot_count();
+    oversized_.assign(n, 0);
+    oversized_count_ = 0;
+    for (std::size_t slot = 0; slot < n; ++slot) {
+        bool spans_three = false;
+        for (int depth = 0; depth < Dim && !spans_three; ++depth) {
+            const auto& segment_of = levels_[depth].segment_of;
+            const Item first = static_cast<Item>(slot) << (depth + 1);
+            for (Item parent = 0; parent < (Item{1} << depth); ++parent) {
+                const Item min_item = first | (parent << 1);
+                if (segment_of[min_item | 1U] - segment_of[min_item] > 1) {
+                    spans_three = true;
+                    break;
+                }
+            }
+        }
+        if (spans_three) {
+            oversized_[slot] = 1;
+            ++oversized_count_;
+        }
+    }
+}
+
+/// Steps 9-11 of Section 3 (cell_lists.hpp): the paper's Y2 in 2D; Y2 and Z2 in 3D.
+template <std::floating_point Real, int Dim>
+void PaperPipeline<Real, Dim>::build_cell_lists() {
+    const Level& deepest = levels_[Dim - 1];
+    for (int depth = 0; depth + 1 < Dim; ++depth) {
+        regroup_by_cell(ItemsOf<Real>(levels_[depth].list), Dim - 1 - depth, deepest.segment_of,
+                        deepest.segment_begin, cell_lists_[static_cast<std::size_t>(depth)],
+                        cell_cursor_);
+    }
+}
+
+/// Steps 12-16 of Section 3: every cell in (slab, column, cell) order, with the mask array
+/// updated after each cell and after each finished segment of an upper level.
+template <std::floating_point Real, int Dim>
+template <class Report>
+void PaperPipeline<Real, Dim>::check_cells(Report& report) {
+    const std::size_t n = store_->slot_count();
+    const Level& deepest = levels_[Dim - 1];
+    const auto& cell_begin = deepest.segment_begin;
+    const std::size_t cells = cell_begin.size() - 1;
+    mask_.reset(n);
+    map_.reset(n);
+    std::array<std::size_t, Dim> cells_per_segment{};  // of each upper level
+    for (int depth = 0; depth < Dim; ++depth) {
+        std::size_t count = 1;
+        for (int below = depth + 1; below < Dim; ++below) count *= cuts_;
+        cells_per_segment[static_cast<std::size_t>(depth)] = count;
+    }
+    typename CellChecker<Real, Dim>::CellLists lists;
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+        const std::uint32_t first = cell_begin[cell];
+        const std::size_t size = cell_begin[cell + 1] - first;
+        if (size != 0) {
+            for (int depth = 0; depth + 1 < Dim; ++depth) {
+                lists.upper[static_cast<std::size_t>(depth)] = std::span<const Item>(
+                    cell_lists_[static_cast<std::size_t>(depth)].data() + first, size);
+            }
+            lists.deepest = std::span<const Entry>(deepest.list.data() + first, size);
+            checker_.check(lists, oversized_, store_->boxes(), map_, mask_, report);
+            for (const std::uint32_t slot : map_.boxes()) mask_.mark_cell_done(slot, Dim - 1);
+            map_.clear_cell();
+        }
+        // An empty cell may still close a column or a slab: the mask must learn it all the same.
+        for (int depth = Dim - 2; depth >= 0; --depth) {
+            const std::size_t per_segment = cells_per_segment[static_cast<std::size_t>(depth)];
+            if ((cell + 1) % per_segment != 0) break;
+            for (std::uint32_t i = cell_begin[cell + 1 - per_segment]; i < cell_begin[cell + 1]; ++i) {
+                const Item slot = deepest.list[i].item >> Dim;
+                if (!oversized_[slot]) mask_.mark_segment_done(slot, depth);
+            }
+        }
+    }
+}
+
+template <std::floating_point Real, int Dim>
+void PaperPipeline<Real, Dim>::check_invariants() const {
+    const std::size_t n = store_->slot_count();
+    for (int depth = 0; depth < Dim; ++depth) {
+        const Level& level = levels_[depth];
+        const int shift = depth + 1;
+        SMB_ASSERT(level.list.size() == (n << shift), "list length");
+        std::vector<std::uint8_t> seen(level.list.size(), 0);
+        for (std::size_t j = 0; j + 1 < level.section_begin.size(); ++j) {
+            for (std::uint32_t i = level.section_begin[j]; i < level.section_begin[j + 1]; ++i) {
+                const Entry& entry = level.list[i];
+                SMB_ASSERT(entry.item < seen.size() && !seen[entry.item], "list is a permutation");
+                seen[entry.item] = 1;
+                const auto& box = store_->box_at(entry.item >> shift);
+                const int axis = axis_of_level(depth);
+                SMB_ASSERT(entry.key == (end_of(entry.item) == 0 ? box.min[axis] : box.max[axis]),
+                           "key matches its box");
+                if (i > level.section_begin[j]) {
+                    SMB_ASSERT(!entry_less(entry, level.list[i - 1]), "section is sorted");
+                }
+                if (depth > 0) {
+                    SMB_ASSERT(levels_[depth - 1].segment_of[entry.item >> 1] == j,
+                               "item is in its parent's section");
+                }
+            }
+        }
+        for (std::size_t s = 0; s + 1 < level.segment_begin.size(); ++s) {
+            for (std::uint32_t i = level.segment_begin[s]; i < level.segment_begin[s + 1]; ++i) {
+                SMB_ASSERT(level.segment_of[level.list[i].item] == s, "index array agrees with the cut");
+            }
+        }
+    }
+}
+
+template <std::floating_point Real, int Dim>
+std::size_t PaperPipeline<Real, Dim>::bytes_held() const noexcept {
+    std::size_t bytes = 0;
+    for (const Level& level : levels_) {
+        bytes += level.list.capacity() * sizeof(Entry);
+        bytes += (level.section_begin.capacity() + level.segment_begin.capacity()) * sizeof(std::uint32_t);
+        bytes += level.segment_of.capacity() * sizeof(SegmentId);
+    }
+    for (const auto& cell_list : cell_lists_) bytes += cell_list.capacity() * sizeof(Item);
+    bytes += cell_cursor_.capacity() * sizeof(std::uint32_t);
+    bytes += (arrivals_.capacity() + spare_.capacity()) * sizeof(Entry);
+    bytes += oversized_.capacity() + regroup_.bytes_held() + mask_.bytes_held() + map_.bytes_held();
+    bytes += checker_.bytes_held() + oversized_sweep_.bytes_held();
+    return bytes;
+}
+
+}  // namespace smb::detail

@@ -1,0 +1,404 @@
+#pragma once
+// The default pipeline: SMB's levels of axial cuts, with the cuts kept from one step to the next
+// (cut_tree.hpp) so that every level is a linear bucketing pass instead of a sort.
+//
+// Per detection:
+//   1. order_ holds every box once, in last step's cell order (x-sorted within a cell).
+//   2. Level l (axis Dim-1-l): every box of every group is located against the group's planes
+//      (segment_of) and registered, by a stable counting sort (the singular regrouping: index
+//      array of counts, then a stack of offsets), in each segment its [min, max] touches. A group
+//      whose fullest segment left its band is cut again first (the axial cut). A box that spans
+//      more than two segments is oversized: it leaves the levels and is checked apart.
+//   3. Each cell of the deepest level is checked by cell_sweep.hpp, which also writes the next
+//      order_.
+//   4. Oversized boxes are tested against the cells they cover and against one another.
+// docs/algorithm.md gives the proof that each overlapping pair is reported exactly once.
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "assert.hpp"
+#include "box_store.hpp"
+#include "cell_sweep.hpp"
+#include "cut_tree.hpp"
+#include "smb/box.hpp"
+#include "smb/settings.hpp"
+#include "smb/stats.hpp"
+
+namespace smb::detail {
+
+template <std::floating_point Real, int Dim>
+class PersistentCutPipeline {
+public:
+    /// Drops removed slots from the order and renumbers the others (BoxStore::compact()).
+    void fold_removals(std::span<const Slot> new_slot) {
+        std::size_t write = 0;
+        for (const Slot slot : order_) {
+            if (slot < new_slot.size() && new_slot[slot] != kNoSlot) order_[write++] = new_slot[slot];
+        }
+        order_.resize(write);
+        listed_ = write;
+    }
+
+    void clear() { *this = PersistentCutPipeline(); }
+
+    /// Calls report(id_a, id_b) once for every overlapping pair.
+    template <class Report>
+    void detect(const BoxStore<Real, Dim>& store, const WorldSettings& settings, Report& report,
+                DetectStats& stats);
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        std::size_t bytes = (order_.capacity() + next_order_.capacity()) * sizeof(Slot);
+        bytes += ordered_.capacity() * sizeof(Box<Real, Dim>) + ordered_ids_.capacity() * sizeof(BoxId) + identity_positions_.capacity() * sizeof(Position);
+        for (const auto& list : lists_) bytes += list.capacity() * sizeof(Slot);
+        for (const auto& begin : begin_) bytes += begin.capacity() * sizeof(std::uint32_t);
+        bytes += ranges_.capacity() * sizeof(std::uint32_t) + keys_.capacity() * sizeof(Real);
+        bytes += oversized_.capacity() + oversized_list_.capacity() * sizeof(Slot);
+        bytes += counts_.capacity() * sizeof(std::uint32_t);
+        return bytes + cuts_.bytes_held() + sweep_.bytes_held();
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
+    static constexpr std::uint32_t lo_of(std::uint32_t range) noexcept { return range & 0xFFFFU; }
+    static constexpr std::uint32_t hi_of(std::uint32_t range) noexcept { return range >> 16; }
+
+    /// Entries of the levels and cells are positions in order_ (and in ordered_), not slots.
+    using Position = std::uint32_t;
+
+    void plan_segments(std::size_t n, const WorldSettings& settings);
+    void gather_in_order(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
+    std::span<const Position> identity_(std::size_t n) {
+        if (identity_positions_.size() != n) {
+            identity_positions_.resize(n);
+            for (std::size_t i = 0; i < n; ++i) identity_positions_[i] = static_cast<Position>(i);
+        }
+        return identity_positions_;
+    }
+    double regroup_level(int level, std::span<const Slot> in, std::span<const std::uint32_t> in_begin,
+                         std::span<const Box<Real, Dim>> boxes, std::vector<Slot>& out,
+                         std::vector<std::uint32_t>& out_begin);
+    std::uint32_t locate_group(int level, std::size_t group, std::span<const Slot> entries,
+                               std::span<const Box<Real, Dim>> boxes, std::uint32_t* ranges);
+    template <class Report>
+    std::size_t check_cells(std::span<const Box<Real, Dim>> boxes, Report& report);
+    template <class Report>
+    void check_oversized(std::span<const Box<Real, Dim>> boxes, Report& report);
+    template <class Visit>
+    void for_each_cell_covering(const Box<Real, Dim>& box, Visit&& visit) const;
+    CellFloor<Real, Dim> floor_of_cell(std::size_t cell) const;
+    void check_invariants(std::span<const Box<Real, Dim>> boxes) const;
+
+    std::vector<Slot> order_;       // every slot once: last step's cells, x-sorted within each
+    std::vector<Position> next_order_;   // positions of the home boxes, cell by cell
+    std::vector<Box<Real, Dim>> ordered_;   // the boxes in order_'s order, copied each step
+    std::vector<BoxId> ordered_ids_;        // and their ids
+    std::vector<Position> identity_positions_;
+    std::size_t listed_ = 0;        // slots [0, listed_) are in order_; later ones are new
+    CutTree<Real, Dim> cuts_;
+    std::array<std::vector<Slot>, 2> lists_;             // entries of a level, grouped by segment
+    std::array<std::vector<std::uint32_t>, 2> begin_;    // group offsets into lists_
+    int cells_list_ = 0;                                 // which of lists_ holds the cells
+    std::vector<std::uint32_t> ranges_;  // per entry of the level: first | last segment << 16
+    std::vector<std::uint32_t> counts_;
+    std::vector<Real> keys_;
+    std::vector<std::uint8_t> oversized_;
+    std::vector<Slot> oversized_list_;
+    CellSweep<Real, Dim> sweep_;
+};
+
+/// About (N / target population)^(1/Dim) segments per group, so that cells hold about the target
+/// number of boxes; changed only when N has moved by more than a quarter, since a new count
+/// forgets every plane.
+template <std::floating_point Real, int Dim>
+void PersistentCutPipeline<Real, Dim>::plan_segments(std::size_t n, const WorldSettings& settings) {
+    const double cells = static_cast<double>(n) / static_cast<double>(settings.target_cell_population);
+    const double ideal = std::clamp(std::pow(cells, 1.0 / Dim), 1.0, double{CutTree<Real, Dim>::kMaxSegments});
+    const double current = cuts_.segments();
+    if (current == 0 || ideal > 1.25 * current || ideal < 0.8 * current) {
+        cuts_.reshape(static_cast<std::uint32_t>(std::lround(ideal)));
+    }
+}
+
+template <std::floating_point Real, int Dim>
+template <class Report>
+void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, const WorldSettings& settings,
+                                              Report& report, DetectStats& stats) {
+    const auto store_boxes = store.boxes();
+    const std::size_t n = store_boxes.size();
+    for (std::size_t slot = listed_; slot < n; ++slot) order_.push_back(static_cast<Slot>(slot));
+    listed_ = n;
+    SMB_ASSERT(order_.size() == n, "the order holds every box once");
+    if (n == 0) {
+        cuts_.forget();
+        return;
+    }
+    plan_segments(n, settings);
+    oversized_.assign(n, 0);
+    oversized_list_.clear();
+
+    // The boxes are copied once in last step's cell order: every later pass reads them almost
+    // sequentially, where reading them by slot would miss the cache on nearly every box.
+    const auto start = Clock::now();
+    gather_in_order(store_boxes, store.ids());
+    const std::span<const Box<Real, Dim>> boxes(ordered_);
+    double cutting = 0;
+    std::span<const Position> in(identity_(n));
+    const std::array<std::uint32_t, 2> whole{0, static_cast<std::uint32_t>(n)};
+    std::span<const std::uint32_t> in_begin(whole);
+    for (int level = 0; level < Dim; ++level) {
+        const int target = level % 2;
+        cutting += regroup_level(level, in, in_begin, boxes, lists_[target], begin_[target]);
+        in = lists_[target];
+        in_begin = begin_[target];
+        cells_list_ = target;
+    }
+    const double regrouping = std::chrono::duration<double>(Clock::now() - start).count();
+    stats.sort_seconds = cutting;
+    stats.cut_regroup_seconds = regrouping - cutting;
+    stats.cells = cuts_.cells();
+
+    const auto check_start = Clock::now();
+    auto report_ids = [&](Position a, Position b) { report(ordered_ids_[a], ordered_ids_[b]); };
+    stats.sort_moves = check_cells(boxes, report_ids);
+    check_oversized(boxes, report_ids);
+    stats.oversized_boxes = oversized_list_.size();
+    stats.check_seconds = std::chrono::duration<double>(Clock::now() - check_start).count();
+#ifdef SMB_VALIDATE
+    check_invariants(boxes);
+#endif
+    for (Position& position : next_order_) position = order_[position];
+    order_.swap(next_order_);
+}
+
+template <std::floating_point Real, int Dim>
+void PersistentCutPipeline<Real, Dim>::gather_in_order(std::span<const Box<Real, Dim>> store_boxes,
+                                                       std::span<const BoxId> store_ids) {
+    const std::size_t n = order_.size();
+    ordered_.resize(n);
+    ordered_ids_.resize(n);
+    constexpr std::size_t ahead = 16;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i + ahead < n) {
+            __builtin_prefetch(&store_boxes[order_[i + ahead]]);
+            __builtin_prefetch(&store_ids[order_[i + ahead]]);
+        }
+        ordered_[i] = store_boxes[order_[i]];
+        ordered_ids_[i] = store_ids[order_[i]];
+    }
+}
+
+/// Locates every entry of one group against the group's planes; returns the fullest segment's
+/// count of lower ends (the measure of balance the band is checked against).
+template <std::floating_point Real, int Dim>
+std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::size_t group,
+                                                             std::span<const Slot> entries,
+                                                             std::span<const Box<Real, Dim>> boxes,
+                                                             std::uint32_t* ranges) {
+    const int axis = axis_of_level(level);
+    const std::span<const Real> planes = cuts_.cuts(level, group);
+    const std::uint32_t k = cuts_.segments();
+    std::uint32_t* count = counts_.data();
+    std::fill(count, count + k, 0U);
+    std::uint32_t lo = 0;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const Box<Real, Dim>& box = boxes[entries[i]];
+        lo = segment_near(planes, box.min[axis], lo);
+        const std::uint32_t hi = segment_near(planes, box.max[axis], lo);
+        ranges[i] = lo | (hi << 16);
+        ++count[lo];
+    }
+    return *std::max_element(count, count + k);
+}
+
+/// One level of cuts: locate, cut again where a group left its band, mark the oversized boxes,
+/// then register every other box in each segment it touches by a stable counting sort. Returns
+/// the seconds spent cutting.
+template <std::floating_point Real, int Dim>
+double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<const Slot> in,
+                                                       std::span<const std::uint32_t> in_begin,
+                                                       std::span<const Box<Real, Dim>> boxes,
+                                                       std::vector<Slot>& out,
+                                                       std::vector<std::uint32_t>& out_begin) {
+    const std::size_t groups = cuts_.groups(level);
+    const std::uint32_t k = cuts_.segments();
+    const int axis = axis_of_level(level);
+    SMB_ASSERT(in_begin.size() == groups + 1, "one offset per group");
+    ranges_.resize(in.size());
+    counts_.resize(std::max<std::size_t>(k, groups * k + 1));
+    double cutting = 0;
+    for (std::size_t g = 0; g < groups; ++g) {
+        const std::span<const Slot> entries = in.subspan(in_begin[g], in_begin[g + 1] - in_begin[g]);
+        std::uint32_t* ranges = ranges_.data() + in_begin[g];
+        const std::uint32_t fullest = locate_group(level, g, entries, boxes, ranges);
+        if (cuts_.needs_cut(level, g, fullest)) {
+            const auto cut_start = Clock::now();
+            keys_.resize(entries.size());
+            for (std::size_t i = 0; i < entries.size(); ++i) keys_[i] = boxes[entries[i]].min[axis];
+            cuts_.cut(level, g, keys_);
+            locate_group(level, g, entries, boxes, ranges);
+            cutting += std::chrono::duration<double>(Clock::now() - cut_start).count();
+        }
+    }
+    for (std::size_t i = 0; i < in.size(); ++i) {
+        if (hi_of(ranges_[i]) - lo_of(ranges_[i]) > 1 && !oversized_[in[i]]) {
+            oversized_[in[i]] = 1;
+            oversized_list_.push_back(in[i]);
+        }
+    }
+    // The index array: registrations per segment, turned into offsets...
+    std::uint32_t* count = counts_.data();
+    std::fill(count, count + groups * k + 1, 0U);
+    for (std::size_t g = 0; g < groups; ++g) {
+        std::uint32_t* segment_count = count + g * k + 1;
+        for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
+            if (oversized_[in[i]]) continue;
+            const std::uint32_t range = ranges_[i];
+            for (std::uint32_t s = lo_of(range); s <= hi_of(range); ++s) ++segment_count[s];
+        }
+    }
+    for (std::size_t s = 0; s < groups * k; ++s) count[s + 1] += count[s];
+    out_begin.assign(count, count + groups * k + 1);
+    out.resize(out_begin.back());
+    // ...then the stack pass: each entry goes to the next free place of its segments, keeping
+    // the order the entries came in (last step's), which keeps every cell almost sorted.
+    for (std::size_t g = 0; g < groups; ++g) {
+        std::uint32_t* cursor = count + g * k;
+        for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
+            const Slot slot = in[i];
+            if (oversized_[slot]) continue;
+            const std::uint32_t range = ranges_[i];
+            for (std::uint32_t s = lo_of(range); s <= hi_of(range); ++s) out[cursor[s]++] = slot;
+        }
+    }
+    return cutting;
+}
+
+template <std::floating_point Real, int Dim>
+CellFloor<Real, Dim> PersistentCutPipeline<Real, Dim>::floor_of_cell(std::size_t cell) const {
+    CellFloor<Real, Dim> floor{};
+    const std::uint32_t k = cuts_.segments();
+    std::size_t group = cell;
+    for (int level = Dim - 1; level >= 0; --level) {
+        const auto segment = static_cast<std::uint32_t>(group % k);
+        group /= k;
+        floor[axis_of_level(level)] = cuts_.lower(level, group, segment);
+    }
+    return floor;
+}
+
+template <std::floating_point Real, int Dim>
+template <class Report>
+std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Real, Dim>> boxes,
+                                                          Report& report) {
+    const std::vector<Slot>& cells = lists_[cells_list_];
+    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    next_order_.clear();
+    next_order_.reserve(boxes.size());
+    std::size_t moves = 0;
+    for (std::size_t cell = 0; cell + 1 < cell_begin.size(); ++cell) {
+        const std::uint32_t first = cell_begin[cell];
+        const std::uint32_t size = cell_begin[cell + 1] - first;
+        if (size == 0) continue;
+        const std::span<const Slot> entries(cells.data() + first, size);
+        // The next cell's boxes lie in a few runs of the ordered array, mostly in L3: ask for
+        // them now so that they arrive while this cell is checked.
+        const std::uint32_t next_end = cell + 2 < cell_begin.size() ? cell_begin[cell + 2] : cell_begin[cell + 1];
+        for (std::uint32_t i = cell_begin[cell + 1]; i < next_end; ++i) __builtin_prefetch(&boxes[cells[i]]);
+        moves += sweep_.check(entries, boxes, floor_of_cell(cell), report, next_order_);
+    }
+    next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
+    SMB_ASSERT(next_order_.size() == boxes.size(), "every box has exactly one home cell");
+    return moves;
+}
+
+/// Calls visit(cell, floor) for every cell whose segments `box` touches on every level.
+template <std::floating_point Real, int Dim>
+template <class Visit>
+void PersistentCutPipeline<Real, Dim>::for_each_cell_covering(const Box<Real, Dim>& box, Visit&& visit) const {
+    const std::uint32_t k = cuts_.segments();
+    CellFloor<Real, Dim> floor{};
+    auto descend = [&](auto& self, int level, std::size_t group) -> void {
+        if (level == Dim) {
+            visit(group, floor);
+            return;
+        }
+        const int axis = axis_of_level(level);
+        const std::span<const Real> planes = cuts_.cuts(level, group);
+        const std::uint32_t lo = segment_of(planes, box.min[axis]);
+        const std::uint32_t hi = segment_of(planes, box.max[axis]);
+        for (std::uint32_t s = lo; s <= hi; ++s) {
+            floor[axis] = cuts_.lower(level, group, s);
+            self(self, level + 1, group * k + s);
+        }
+    };
+    descend(descend, 0, 0);
+}
+
+/// Oversized boxes are in no cell. Each is tested against the boxes of every cell it covers,
+/// under the same lower-corner rule as the cells (so a pair is reported once even when the
+/// other box is registered in several of those cells), and against the other oversized boxes by
+/// a sweep on x.
+template <std::floating_point Real, int Dim>
+template <class Report>
+void PersistentCutPipeline<Real, Dim>::check_oversized(std::span<const Box<Real, Dim>> boxes, Report& report) {
+    if (oversized_list_.empty()) return;
+    const std::vector<Slot>& cells = lists_[cells_list_];
+    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    for (const Slot big : oversized_list_) {
+        const Box<Real, Dim>& a = boxes[big];
+        for_each_cell_covering(a, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
+            for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
+                const Box<Real, Dim>& b = boxes[cells[i]];
+                if (!overlaps(a, b)) continue;
+                bool owned = true;
+                for (int axis = 0; axis < Dim; ++axis)
+                    owned &= (a.min[axis] >= floor[axis]) | (b.min[axis] >= floor[axis]);
+                if (owned) report(big, cells[i]);
+            }
+        });
+    }
+    std::vector<Slot>& sorted = oversized_list_;
+    std::sort(sorted.begin(), sorted.end(),
+              [&](Slot x, Slot y) { return boxes[x].min[0] < boxes[y].min[0]; });
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+        const Box<Real, Dim>& a = boxes[sorted[i]];
+        for (std::size_t j = i + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
+            if (overlaps(a, boxes[sorted[j]])) report(sorted[i], sorted[j]);
+        }
+    }
+}
+
+template <std::floating_point Real, int Dim>
+void PersistentCutPipeline<Real, Dim>::check_invariants(std::span<const Box<Real, Dim>> boxes) const {
+    // Every box that is not oversized is registered in exactly the cells it covers.
+    const std::vector<Slot>& cells = lists_[cells_list_];
+    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    std::vector<std::uint32_t> registered(boxes.size(), 0);
+    for (std::size_t cell = 0; cell + 1 < cell_begin.size(); ++cell) {
+        for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
+            SMB_ASSERT(!oversized_[cells[i]], "an oversized box is in a cell");
+            ++registered[cells[i]];
+        }
+    }
+    for (std::size_t slot = 0; slot < boxes.size(); ++slot) {
+        if (oversized_[slot]) continue;
+        std::uint32_t covered = 0;
+        for_each_cell_covering(boxes[slot], [&](std::size_t cell, const CellFloor<Real, Dim>&) {
+            ++covered;
+            const auto* first = cells.data() + cell_begin[cell];
+            const auto* last = cells.data() + cell_begin[cell + 1];
+            SMB_ASSERT(std::find(first, last, static_cast<Slot>(slot)) != last, "a box misses a cell it covers");
+        });
+        SMB_ASSERT(covered == registered[slot], "a box is in a cell it does not cover");
+    }
+}
+
+}  // namespace smb::detail
