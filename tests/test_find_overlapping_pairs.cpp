@@ -25,7 +25,7 @@ protected:
     using BoxT = Box<Real, Dim>;
 
     static ::testing::AssertionResult finds_like_brute_force(const std::vector<BoxT>& boxes,
-                                                             const WorldSettings& settings = {}) {
+                                                             const WorldSettings& settings = test_settings()) {
         const std::span<const BoxT> view(boxes);
         const std::vector<Pair> pairs = find_overlapping_pairs<Real, Dim>(view, settings);
         return same_pairs(pairs, brute_force_pairs<Real, Dim>(view), [&boxes](BoxId id) {
@@ -85,7 +85,7 @@ TYPED_TEST(FindOverlappingPairsTest, SettingsDoNotChangeTheAnswer) {
     for (const std::size_t population : {std::size_t{1}, std::size_t{3}, std::size_t{64},
                                          std::size_t{100000}}) {
         SCOPED_TRACE(::testing::Message() << "target_cell_population " << population);
-        WorldSettings settings;
+        WorldSettings settings = test_settings();
         settings.target_cell_population = population;
         settings.pair_chunk_size = 1;
         EXPECT_TRUE(this->finds_like_brute_force(boxes, settings));

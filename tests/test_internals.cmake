@@ -8,4 +8,3 @@ endforeach()
 
 # Public-API tests of the lead's own (pair limits and streaming).
 smb_add_gtest(NAME test_pair_limit SOURCES test_pair_limit.cpp)
-smb_add_gtest(NAME test_world_mixed_distributions SOURCES test_world_mixed_distributions.cpp)

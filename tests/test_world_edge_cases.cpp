@@ -97,7 +97,7 @@ protected:
         for (std::size_t i = 0; i < ids.size(); ++i) reference_.update(ids[i], boxes[i]);
     }
 
-    World<Real, Dim> world_;
+    World<Real, Dim> world_{test_settings()};
     ReferenceWorld<Real, Dim> reference_;
 };
 
@@ -264,7 +264,7 @@ TYPED_TEST(WorldEdgeCaseTest, NegativeZeroTouchesPositiveZero) {
 TYPED_TEST(WorldEdgeCaseTest, DegenerateBoxesTouchingAtACorner) {
     // The smallest scene found where a cut between tied coordinates lost a pair: boxes 1 and
     // 3 meet only at the point (1, 1, ...).
-    WorldSettings settings;
+    WorldSettings settings = test_settings();
     settings.target_cell_population = 1;
     World<typename TestFixture::Real, TestFixture::Dim> world(settings);
     ReferenceWorld<typename TestFixture::Real, TestFixture::Dim> reference;
@@ -305,7 +305,7 @@ TYPED_TEST(WorldEdgeCaseTest, FewDistinctCoordinateValues) {
                     }
                     return TestFixture::from_corners(lo, hi);
                 };
-                WorldSettings settings;
+                WorldSettings settings = test_settings();
                 settings.target_cell_population = population;
                 World<typename TestFixture::Real, TestFixture::Dim> world(settings);
                 ReferenceWorld<typename TestFixture::Real, TestFixture::Dim> reference;
@@ -572,7 +572,7 @@ TYPED_TEST(WorldEdgeCaseTest, IdsNearTheTopOfTheRange) {
 }
 
 TYPED_TEST(WorldEdgeCaseTest, PairSinkReceivesEveryPairInBoundedChunks) {
-    WorldSettings settings;
+    WorldSettings settings = test_settings();
     settings.pair_chunk_size = 7;
     World<typename TestFixture::Real, TestFixture::Dim> world(settings);
     Random random(2301);

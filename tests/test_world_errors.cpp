@@ -165,8 +165,8 @@ protected:
     }
 
     Random random_{5150};
-    WorldType world_;
-    WorldType twin_;
+    WorldType world_{test_settings()};
+    WorldType twin_{test_settings()};
     ReferenceWorld<Real, Dim> reference_;
     BoxId next_fresh_id_ = 100000;
     std::vector<Pair> scratch_;

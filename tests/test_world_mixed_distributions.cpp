@@ -61,7 +61,7 @@ TYPED_TEST(MixedDistributionsTest, MatchesBruteForceUnderChurn) {
     for (std::uint64_t seed = 1; seed <= test::scaled(48); ++seed) {
         Draw draw(seed * 977 + Dim);
         const int family = static_cast<int>(seed % 8);
-        WorldSettings settings;
+        WorldSettings settings = ::smb::test::test_settings();
         settings.target_cell_population = populations[seed % 6];
         TypeParam world(settings);
         std::vector<BoxId> ids;

@@ -42,7 +42,7 @@ protected:
     /// Runs one regime from one seed; returns a fingerprint of every detection's raw output
     /// (its pairs in reported order), so that determinism can be checked by running twice.
     std::uint64_t run(const Regime& regime, std::uint64_t seed,
-                      const WorldSettings& settings = {}) {
+                      const WorldSettings& settings = test_settings()) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
         Random random(seed);
         const double mean_side = 0.5 * (regime.min_side + regime.max_side);
@@ -297,7 +297,7 @@ TYPED_TEST(WorldRandomTest, SmallAndLargeCellPopulations) {
     for (const std::size_t population : {std::size_t{1}, std::size_t{2}, std::size_t{7},
                                          std::size_t{10000}}) {
         SCOPED_TRACE(::testing::Message() << "target_cell_population " << population);
-        WorldSettings settings;
+        WorldSettings settings = test_settings();
         settings.target_cell_population = population;
         this->run(regime, 91, settings);
     }

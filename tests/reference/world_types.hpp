@@ -12,6 +12,20 @@ namespace smb::test {
 
 using WorldTypes = ::testing::Types<World2f, World2d, World3f, World3d>;
 
+/// The pipeline the world tests run: every such test is built twice (tests/CMakeLists.txt),
+/// once for each pipeline, so both are held to brute force.
+#if defined(SMB_TEST_PAPER_PIPELINE)
+inline constexpr Pipeline kTestPipeline = Pipeline::paper_lists;
+#else
+inline constexpr Pipeline kTestPipeline = Pipeline::persistent_cuts;
+#endif
+
+inline WorldSettings test_settings() {
+    WorldSettings settings;
+    settings.pipeline = kTestPipeline;
+    return settings;
+}
+
 struct WorldTypeNames {
     template <typename WorldType>
     static std::string GetName(int) {
