@@ -116,8 +116,7 @@ public:
     /// The axial cut: `keys` (the lower coordinates of the group's boxes, in any order; they are
     /// reordered) are split into k segments of equal counts. Equal keys always share a segment,
     /// since a cut is a coordinate value, so a long run of equal keys may leave segments empty
-    /// and one segment full: the band then tolerates that fullness rather than cutting the same
-    /// run again every step.
+    /// and one segment full. The caller then sets the group's band with set_band().
     void cut(int level, std::size_t group, std::span<Real> keys) {
         Real* out = cuts_[level].data() + group * (k_ - 1);
         const std::size_t n = keys.size();
@@ -139,17 +138,14 @@ public:
                 }
             }
         }
-        std::uint32_t fullest = 0;
-        if (k_ > 1 && n > 0) {
-            std::vector<std::uint32_t>& count = count_scratch_;
-            count.assign(k_, 0);
-            const std::span<const Real> planes(out, k_ - 1);
-            for (const Real key : keys) ++count[segment_of(planes, key)];
-            fullest = *std::max_element(count.begin(), count.end());
-        } else {
-            fullest = static_cast<std::uint32_t>(std::min<std::size_t>(n, 0xFFFFFFFFU));
-        }
-        const double even = static_cast<double>(n) / k_;
+    }
+
+    /// Sets the band of a group just cut: its fullest segment may grow by half (and at least
+    /// to twice the even share) before the group is cut again. Measuring the band on the fresh
+    /// cut, not on the even share, keeps a group that cannot be balanced (a run of equal
+    /// coordinates) from being cut again every step.
+    void set_band(int level, std::size_t group, std::size_t registrations, std::uint32_t fullest) {
+        const double even = static_cast<double>(registrations) / k_;
         const double band = std::max(2.0 * even, 1.5 * static_cast<double>(fullest)) + 8.0;
         limit_[level][group] = static_cast<std::uint32_t>(std::min(band, 4.0e9));
     }
@@ -165,7 +161,7 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        std::size_t bytes = count_scratch_.capacity() * sizeof(std::uint32_t);
+        std::size_t bytes = 0;
         for (int level = 0; level < Dim; ++level)
             bytes += cuts_[level].capacity() * sizeof(Real) + limit_[level].capacity() * sizeof(std::uint32_t);
         return bytes;
@@ -176,7 +172,6 @@ private:
     std::array<std::size_t, Dim + 1> groups_{};
     std::array<std::vector<Real>, Dim> cuts_;
     std::array<std::vector<std::uint32_t>, Dim> limit_;  // band of each group; 0 = not cut yet
-    std::vector<std::uint32_t> count_scratch_;
 };
 
 }  // namespace smb::detail

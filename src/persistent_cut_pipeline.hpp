@@ -69,6 +69,7 @@ private:
     static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
     static constexpr std::uint32_t lo_of(std::uint32_t range) noexcept { return range & 0xFFFFU; }
     static constexpr std::uint32_t hi_of(std::uint32_t range) noexcept { return range >> 16; }
+    static constexpr std::uint32_t kNoRange = 1;  // first segment 1, last 0: registered nowhere
 
     /// Entries of the levels and cells are positions in order_ (and in ordered_), not slots.
     using Position = std::uint32_t;
@@ -82,11 +83,12 @@ private:
         }
         return identity_positions_;
     }
-    double regroup_level(int level, std::span<const Slot> in, std::span<const std::uint32_t> in_begin,
-                         std::span<const Box<Real, Dim>> boxes, std::vector<Slot>& out,
+    double regroup_level(int level, std::span<const Position> in, std::span<const std::uint32_t> in_begin,
+                         std::span<const Box<Real, Dim>> boxes, std::vector<Position>& out,
                          std::vector<std::uint32_t>& out_begin);
-    std::uint32_t locate_group(int level, std::size_t group, std::span<const Slot> entries,
-                               std::span<const Box<Real, Dim>> boxes, std::uint32_t* ranges);
+    std::uint32_t locate_group(int level, std::size_t group, std::span<const Position> entries,
+                               std::span<const Box<Real, Dim>> boxes, std::uint32_t* ranges,
+                               std::uint32_t* count);
     template <class Report>
     std::size_t check_cells(std::span<const Box<Real, Dim>> boxes, Report& report);
     template <class Report>
@@ -110,7 +112,8 @@ private:
     std::vector<std::uint32_t> counts_;
     std::vector<Real> keys_;
     std::vector<std::uint8_t> oversized_;
-    std::vector<Slot> oversized_list_;
+    std::vector<Position> oversized_list_;
+    bool late_oversized_ = false;
     CellSweep<Real, Dim> sweep_;
 };
 
@@ -195,87 +198,116 @@ void PersistentCutPipeline<Real, Dim>::gather_in_order(std::span<const Box<Real,
     }
 }
 
-/// Locates every entry of one group against the group's planes; returns the fullest segment's
-/// count of lower ends (the measure of balance the band is checked against).
+/// Locates every entry of one group against the group's planes and counts its registrations
+/// per segment into `count` (k counters). A box spanning more than two segments is marked
+/// oversized and not counted. Returns the fullest segment's count.
 template <std::floating_point Real, int Dim>
 std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::size_t group,
-                                                             std::span<const Slot> entries,
+                                                             std::span<const Position> entries,
                                                              std::span<const Box<Real, Dim>> boxes,
-                                                             std::uint32_t* ranges) {
+                                                             std::uint32_t* ranges, std::uint32_t* count) {
     const int axis = axis_of_level(level);
     const std::span<const Real> planes = cuts_.cuts(level, group);
     const std::uint32_t k = cuts_.segments();
-    std::uint32_t* count = counts_.data();
     std::fill(count, count + k, 0U);
     std::uint32_t lo = 0;
     for (std::size_t i = 0; i < entries.size(); ++i) {
-        const Box<Real, Dim>& box = boxes[entries[i]];
+        const Position position = entries[i];
+        if (oversized_[position]) {
+            ranges[i] = kNoRange;
+            continue;
+        }
+        const Box<Real, Dim>& box = boxes[position];
         lo = segment_near(planes, box.min[axis], lo);
         const std::uint32_t hi = segment_near(planes, box.max[axis], lo);
+        if (hi - lo > 1) {
+            // Counted already if it was registered in an earlier group of this level.
+            oversized_[position] = 1;
+            oversized_list_.push_back(position);
+            late_oversized_ = late_oversized_ || level > 0;
+            ranges[i] = kNoRange;
+            continue;
+        }
         ranges[i] = lo | (hi << 16);
         ++count[lo];
+        count[hi] += hi != lo ? 1U : 0U;
     }
     return *std::max_element(count, count + k);
 }
 
-/// One level of cuts: locate, cut again where a group left its band, mark the oversized boxes,
-/// then register every other box in each segment it touches by a stable counting sort. Returns
-/// the seconds spent cutting.
+/// One level of cuts: locate and count (cutting again a group that left its band), then
+/// register every box that is not oversized in each segment it touches, by a stable counting
+/// sort. Returns the seconds spent cutting.
 template <std::floating_point Real, int Dim>
-double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<const Slot> in,
+double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<const Position> in,
                                                        std::span<const std::uint32_t> in_begin,
                                                        std::span<const Box<Real, Dim>> boxes,
-                                                       std::vector<Slot>& out,
+                                                       std::vector<Position>& out,
                                                        std::vector<std::uint32_t>& out_begin) {
     const std::size_t groups = cuts_.groups(level);
     const std::uint32_t k = cuts_.segments();
     const int axis = axis_of_level(level);
     SMB_ASSERT(in_begin.size() == groups + 1, "one offset per group");
     ranges_.resize(in.size());
-    counts_.resize(std::max<std::size_t>(k, groups * k + 1));
+    // The index array: registrations per segment (shifted by one), turned into offsets below.
+    counts_.resize(groups * k + 1);
+    std::uint32_t* count = counts_.data();
+    count[0] = 0;
+    late_oversized_ = false;
     double cutting = 0;
     for (std::size_t g = 0; g < groups; ++g) {
-        const std::span<const Slot> entries = in.subspan(in_begin[g], in_begin[g + 1] - in_begin[g]);
+        const std::span<const Position> entries = in.subspan(in_begin[g], in_begin[g + 1] - in_begin[g]);
         std::uint32_t* ranges = ranges_.data() + in_begin[g];
-        const std::uint32_t fullest = locate_group(level, g, entries, boxes, ranges);
+        std::uint32_t* segment_count = count + g * k + 1;
+        const std::size_t marked_before = oversized_list_.size();
+        const bool cut_before = cuts_.was_cut(level, g);
+        const std::uint32_t fullest =
+            cut_before ? locate_group(level, g, entries, boxes, ranges, segment_count) : 0;
         if (cuts_.needs_cut(level, g, fullest)) {
             const auto cut_start = Clock::now();
-            keys_.resize(entries.size());
-            for (std::size_t i = 0; i < entries.size(); ++i) keys_[i] = boxes[entries[i]].min[axis];
+            // What the old planes called oversized is judged again against the new ones.
+            for (std::size_t i = marked_before; i < oversized_list_.size(); ++i) oversized_[oversized_list_[i]] = 0;
+            oversized_list_.resize(marked_before);
+            keys_.clear();
+            for (const Position position : entries) {
+                if (!oversized_[position]) keys_.push_back(boxes[position].min[axis]);
+            }
             cuts_.cut(level, g, keys_);
-            locate_group(level, g, entries, boxes, ranges);
+            const std::uint32_t balanced = locate_group(level, g, entries, boxes, ranges, segment_count);
+            std::size_t registrations = 0;
+            for (std::uint32_t s = 0; s < k; ++s) registrations += segment_count[s];
+            cuts_.set_band(level, g, registrations, balanced);
             cutting += std::chrono::duration<double>(Clock::now() - cut_start).count();
         }
     }
-    for (std::size_t i = 0; i < in.size(); ++i) {
-        if (hi_of(ranges_[i]) - lo_of(ranges_[i]) > 1 && !oversized_[in[i]]) {
-            oversized_[in[i]] = 1;
-            oversized_list_.push_back(in[i]);
-        }
-    }
-    // The index array: registrations per segment, turned into offsets...
-    std::uint32_t* count = counts_.data();
-    std::fill(count, count + groups * k + 1, 0U);
-    for (std::size_t g = 0; g < groups; ++g) {
-        std::uint32_t* segment_count = count + g * k + 1;
-        for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
-            if (oversized_[in[i]]) continue;
-            const std::uint32_t range = ranges_[i];
-            for (std::uint32_t s = lo_of(range); s <= hi_of(range); ++s) ++segment_count[s];
+    if (late_oversized_) {
+        // A box found oversized in one group was counted in the groups before it: count again
+        // without it (rare: only boxes much larger than their neighbours' cells).
+        std::fill(count, count + groups * k + 1, 0U);
+        for (std::size_t g = 0; g < groups; ++g) {
+            std::uint32_t* segment_count = count + g * k + 1;
+            for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
+                if (oversized_[in[i]]) ranges_[i] = kNoRange;
+                const std::uint32_t range = ranges_[i];
+                for (std::uint32_t s = lo_of(range); s <= hi_of(range); ++s) ++segment_count[s];
+            }
         }
     }
     for (std::size_t s = 0; s < groups * k; ++s) count[s + 1] += count[s];
     out_begin.assign(count, count + groups * k + 1);
     out.resize(out_begin.back());
-    // ...then the stack pass: each entry goes to the next free place of its segments, keeping
-    // the order the entries came in (last step's), which keeps every cell almost sorted.
+    // The stack pass: each entry goes to the next free place of its segments, keeping the order
+    // the entries came in (last step's), which keeps every cell almost sorted.
+    Position* target = out.data();
     for (std::size_t g = 0; g < groups; ++g) {
         std::uint32_t* cursor = count + g * k;
         for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
-            const Slot slot = in[i];
-            if (oversized_[slot]) continue;
             const std::uint32_t range = ranges_[i];
-            for (std::uint32_t s = lo_of(range); s <= hi_of(range); ++s) out[cursor[s]++] = slot;
+            const std::uint32_t lo = lo_of(range);
+            const std::uint32_t hi = hi_of(range);
+            if (lo > hi) continue;
+            target[cursor[lo]++] = in[i];
+            if (hi != lo) target[cursor[hi]++] = in[i];
         }
     }
     return cutting;
@@ -312,7 +344,7 @@ std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Re
         // them now so that they arrive while this cell is checked.
         const std::uint32_t next_end = cell + 2 < cell_begin.size() ? cell_begin[cell + 2] : cell_begin[cell + 1];
         for (std::uint32_t i = cell_begin[cell + 1]; i < next_end; ++i) __builtin_prefetch(&boxes[cells[i]]);
-        moves += sweep_.check(entries, boxes, floor_of_cell(cell), report, next_order_);
+        moves += sweep_.check(entries, boxes, ordered_ids_, floor_of_cell(cell), report, next_order_);
     }
     next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
     SMB_ASSERT(next_order_.size() == boxes.size(), "every box has exactly one home cell");
@@ -352,6 +384,12 @@ void PersistentCutPipeline<Real, Dim>::check_oversized(std::span<const Box<Real,
     if (oversized_list_.empty()) return;
     const std::vector<Slot>& cells = lists_[cells_list_];
     const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    // In x order (ties by id), so that the order of the report depends on the boxes alone.
+    std::vector<Position>& sorted = oversized_list_;
+    std::sort(sorted.begin(), sorted.end(), [&](Position x, Position y) {
+        if (boxes[x].min[0] != boxes[y].min[0]) return boxes[x].min[0] < boxes[y].min[0];
+        return ordered_ids_[x] < ordered_ids_[y];
+    });
     for (const Slot big : oversized_list_) {
         const Box<Real, Dim>& a = boxes[big];
         for_each_cell_covering(a, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
@@ -365,9 +403,6 @@ void PersistentCutPipeline<Real, Dim>::check_oversized(std::span<const Box<Real,
             }
         });
     }
-    std::vector<Slot>& sorted = oversized_list_;
-    std::sort(sorted.begin(), sorted.end(),
-              [&](Slot x, Slot y) { return boxes[x].min[0] < boxes[y].min[0]; });
     for (std::size_t i = 0; i < sorted.size(); ++i) {
         const Box<Real, Dim>& a = boxes[sorted[i]];
         for (std::size_t j = i + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
