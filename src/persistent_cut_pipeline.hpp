@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -28,8 +29,13 @@
 #include "cell_sweep.hpp"
 #include "cut_tree.hpp"
 #include "smb/box.hpp"
+#include "smb/pair.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace smb::detail {
 
@@ -58,10 +64,17 @@ public:
         bytes += ordered_.capacity() * sizeof(Box<Real, Dim>) + ordered_ids_.capacity() * sizeof(BoxId) + identity_positions_.capacity() * sizeof(Position);
         for (const auto& list : lists_) bytes += list.capacity() * sizeof(Slot);
         for (const auto& begin : begin_) bytes += begin.capacity() * sizeof(std::uint32_t);
-        bytes += ranges_.capacity() * sizeof(std::uint32_t) + keys_.capacity() * sizeof(Real);
-        bytes += oversized_.capacity() + oversized_list_.capacity() * sizeof(Slot);
+        bytes += ranges_.capacity() * sizeof(std::uint32_t);
+        bytes += oversized_.capacity() + oversized_list_.capacity() * sizeof(Position);
         bytes += counts_.capacity() * sizeof(std::uint32_t);
-        return bytes + cuts_.bytes_held() + sweep_.bytes_held();
+        bytes += workers_.capacity() * sizeof(WorkerScratch) + blocks_.capacity() * sizeof(BlockOutput);
+        for (const WorkerScratch& worker : workers_) {
+            bytes += worker.keys.capacity() * sizeof(Real) + worker.marks.capacity() * sizeof(Position) +
+                     worker.count.capacity() * sizeof(std::uint32_t) + worker.sweep.bytes_held();
+        }
+        for (const BlockOutput& block : blocks_)
+            bytes += block.pairs.capacity() * sizeof(Pair) + block.home.capacity() * sizeof(Position);
+        return bytes + cuts_.bytes_held();
     }
 
 private:
@@ -74,7 +87,24 @@ private:
     /// Entries of the levels and cells are positions in order_ (and in ordered_), not slots.
     using Position = std::uint32_t;
 
+    /// What one thread needs for itself while groups or cells are shared out.
+    struct WorkerScratch {
+        std::vector<Real> keys;            // a group's lower ends, for its axial cut
+        std::vector<Position> marks;       // boxes this thread found oversized on this level
+        std::vector<std::uint32_t> count;  // level 0: this thread's share of the index array
+        CellSweep<Real, Dim> sweep;
+        bool late = false;                 // marked a box some earlier group may have counted
+    };
+    /// The pairs and home boxes of one block of cells (a column), handed on in block order so
+    /// that the report is the same whatever the number of threads.
+    struct BlockOutput {
+        std::vector<Pair> pairs;
+        std::vector<Position> home;
+        std::size_t moves = 0;
+    };
+
     void plan_segments(std::size_t n, const WorldSettings& settings);
+    void plan_threads(const WorldSettings& settings);
     void gather_in_order(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
     std::span<const Position> identity_(std::size_t n) {
         if (identity_positions_.size() != n) {
@@ -88,7 +118,10 @@ private:
                          std::vector<std::uint32_t>& out_begin);
     std::uint32_t locate_group(int level, std::size_t group, std::span<const Position> entries,
                                std::span<const Box<Real, Dim>> boxes, std::uint32_t* ranges,
-                               std::uint32_t* count);
+                               std::uint32_t* count, WorkerScratch& worker);
+    double regroup_first_level(std::span<const Position> in, std::span<const Box<Real, Dim>> boxes,
+                               std::vector<Position>& out, std::vector<std::uint32_t>& out_begin);
+    void publish_marks();
     template <class Report>
     std::size_t check_cells(std::span<const Box<Real, Dim>> boxes, Report& report);
     template <class Report>
@@ -110,11 +143,11 @@ private:
     int cells_list_ = 0;                                 // which of lists_ holds the cells
     std::vector<std::uint32_t> ranges_;  // per entry of the level: first | last segment << 16
     std::vector<std::uint32_t> counts_;
-    std::vector<Real> keys_;
-    std::vector<std::uint8_t> oversized_;
+    std::vector<std::uint8_t> oversized_;   // per position; written through atomic_ref
     std::vector<Position> oversized_list_;
-    bool late_oversized_ = false;
-    CellSweep<Real, Dim> sweep_;
+    int threads_ = 1;
+    std::vector<WorkerScratch> workers_;     // one per thread
+    std::vector<BlockOutput> blocks_;         // one per block of a round of cell checks
 };
 
 /// About (N / target population)^(1/Dim) segments per group, so that cells hold about the target
@@ -144,6 +177,7 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
         return;
     }
     plan_segments(n, settings);
+    plan_threads(settings);
     oversized_.assign(n, 0);
     oversized_list_.clear();
 
@@ -152,15 +186,12 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
     const auto start = Clock::now();
     gather_in_order(store_boxes, store.ids());
     const std::span<const Box<Real, Dim>> boxes(ordered_);
-    double cutting = 0;
-    std::span<const Position> in(identity_(n));
-    const std::array<std::uint32_t, 2> whole{0, static_cast<std::uint32_t>(n)};
-    std::span<const std::uint32_t> in_begin(whole);
-    for (int level = 0; level < Dim; ++level) {
+    double cutting = regroup_first_level(identity_(n), boxes, lists_[0], begin_[0]);
+    cells_list_ = 0;
+    for (int level = 1; level < Dim; ++level) {
+        const int source = (level - 1) % 2;
         const int target = level % 2;
-        cutting += regroup_level(level, in, in_begin, boxes, lists_[target], begin_[target]);
-        in = lists_[target];
-        in_begin = begin_[target];
+        cutting += regroup_level(level, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
         cells_list_ = target;
     }
     const double regrouping = std::chrono::duration<double>(Clock::now() - start).count();
@@ -169,16 +200,39 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
     stats.cells = cuts_.cells();
 
     const auto check_start = Clock::now();
-    auto report_ids = [&](Position a, Position b) { report(ordered_ids_[a], ordered_ids_[b]); };
-    stats.sort_moves = check_cells(boxes, report_ids);
-    check_oversized(boxes, report_ids);
+    stats.sort_moves = check_cells(boxes, report);
+    auto report_positions = [&](Position a, Position b) { report(ordered_ids_[a], ordered_ids_[b]); };
+    check_oversized(boxes, report_positions);
     stats.oversized_boxes = oversized_list_.size();
     stats.check_seconds = std::chrono::duration<double>(Clock::now() - check_start).count();
 #ifdef SMB_VALIDATE
     check_invariants(boxes);
 #endif
-    for (Position& position : next_order_) position = order_[position];
+    const auto count = static_cast<std::ptrdiff_t>(next_order_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::ptrdiff_t i = 0; i < count; ++i) next_order_[i] = order_[next_order_[i]];
     order_.swap(next_order_);
+}
+
+/// Threads: WorldSettings::threads, 0 for as many as OpenMP offers; one without OpenMP.
+template <std::floating_point Real, int Dim>
+void PersistentCutPipeline<Real, Dim>::plan_threads(const WorldSettings& settings) {
+#ifdef _OPENMP
+    threads_ = settings.threads == 0 ? omp_get_max_threads() : static_cast<int>(settings.threads);
+#else
+    (void)settings;
+    threads_ = 1;
+#endif
+    threads_ = std::max(threads_, 1);
+    if (workers_.size() != static_cast<std::size_t>(threads_)) workers_.resize(static_cast<std::size_t>(threads_));
+}
+
+[[nodiscard]] inline int this_thread() noexcept {
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
 }
 
 template <std::floating_point Real, int Dim>
@@ -188,7 +242,10 @@ void PersistentCutPipeline<Real, Dim>::gather_in_order(std::span<const Box<Real,
     ordered_.resize(n);
     ordered_ids_.resize(n);
     constexpr std::size_t ahead = 16;
-    for (std::size_t i = 0; i < n; ++i) {
+    const auto count = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::ptrdiff_t j = 0; j < count; ++j) {
+        const auto i = static_cast<std::size_t>(j);
         if (i + ahead < n) {
             __builtin_prefetch(&store_boxes[order_[i + ahead]]);
             __builtin_prefetch(&store_ids[order_[i + ahead]]);
@@ -199,13 +256,15 @@ void PersistentCutPipeline<Real, Dim>::gather_in_order(std::span<const Box<Real,
 }
 
 /// Locates every entry of one group against the group's planes and counts its registrations
-/// per segment into `count` (k counters). A box spanning more than two segments is marked
-/// oversized and not counted. Returns the fullest segment's count.
+/// per segment into `count` (k counters). A box spanning more than two segments is noted in
+/// worker.marks (published as oversized once the group's planes are final) and not counted.
+/// Returns the fullest segment's count.
 template <std::floating_point Real, int Dim>
 std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::size_t group,
                                                              std::span<const Position> entries,
                                                              std::span<const Box<Real, Dim>> boxes,
-                                                             std::uint32_t* ranges, std::uint32_t* count) {
+                                                             std::uint32_t* ranges, std::uint32_t* count,
+                                                             WorkerScratch& worker) {
     const int axis = axis_of_level(level);
     const std::span<const Real> planes = cuts_.cuts(level, group);
     const std::uint32_t k = cuts_.segments();
@@ -213,7 +272,8 @@ std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::siz
     std::uint32_t lo = 0;
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const Position position = entries[i];
-        if (oversized_[position]) {
+        // Another thread may mark this box on this level meanwhile; then the count is redone.
+        if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) != 0) {
             ranges[i] = kNoRange;
             continue;
         }
@@ -221,10 +281,9 @@ std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::siz
         lo = segment_near(planes, box.min[axis], lo);
         const std::uint32_t hi = segment_near(planes, box.max[axis], lo);
         if (hi - lo > 1) {
+            worker.marks.push_back(position);
             // Counted already if it was registered in an earlier group of this level.
-            oversized_[position] = 1;
-            oversized_list_.push_back(position);
-            late_oversized_ = late_oversized_ || level > 0;
+            worker.late = worker.late || level > 0;
             ranges[i] = kNoRange;
             continue;
         }
@@ -235,9 +294,99 @@ std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::siz
     return *std::max_element(count, count + k);
 }
 
-/// One level of cuts: locate and count (cutting again a group that left its band), then
-/// register every box that is not oversized in each segment it touches, by a stable counting
-/// sort. Returns the seconds spent cutting.
+/// Makes the threads' marks visible as oversized boxes, each once.
+template <std::floating_point Real, int Dim>
+void PersistentCutPipeline<Real, Dim>::publish_marks() {
+    for (WorkerScratch& worker : workers_) {
+        for (const Position position : worker.marks) {
+            if (oversized_[position] == 2) continue;  // already listed (marked in two groups)
+            oversized_[position] = 2;
+            oversized_list_.push_back(position);
+        }
+        worker.marks.clear();
+    }
+}
+
+/// Level 0: one group (all boxes), so the threads share its entries instead of its groups: each
+/// locates and counts its share, the index array is summed, and each scatters its share to the
+/// offsets that keep the counting sort stable.
+template <std::floating_point Real, int Dim>
+double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::span<const Position> in,
+                                                             std::span<const Box<Real, Dim>> boxes,
+                                                             std::vector<Position>& out,
+                                                             std::vector<std::uint32_t>& out_begin) {
+    const std::uint32_t k = cuts_.segments();
+    const std::size_t n = in.size();
+    const auto shares = static_cast<std::size_t>(threads_);
+    ranges_.resize(n);
+    auto share_begin = [&](std::size_t t) { return n * t / shares; };
+    auto locate_shares = [&]() {
+        std::uint32_t fullest = 0;
+#pragma omp parallel for num_threads(threads_) schedule(static, 1)
+        for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
+            WorkerScratch& worker = workers_[static_cast<std::size_t>(t)];
+            worker.count.resize(k);
+            worker.marks.clear();
+            const std::size_t first = share_begin(static_cast<std::size_t>(t));
+            const std::size_t last = share_begin(static_cast<std::size_t>(t) + 1);
+            locate_group(0, 0, in.subspan(first, last - first), boxes, ranges_.data() + first,
+                         worker.count.data(), worker);
+        }
+        for (std::uint32_t s = 0; s < k; ++s) {
+            std::uint32_t total = 0;
+            for (const WorkerScratch& worker : workers_) total += worker.count[s];
+            fullest = std::max(fullest, total);
+        }
+        return fullest;
+    };
+    double cutting = 0;
+    const std::uint32_t fullest = cuts_.was_cut(0, 0) ? locate_shares() : 0;
+    if (cuts_.needs_cut(0, 0, fullest)) {
+        const auto cut_start = Clock::now();
+        std::vector<Real>& keys = workers_[0].keys;
+        keys.resize(n);
+        for (std::size_t i = 0; i < n; ++i) keys[i] = boxes[in[i]].min[axis_of_level(0)];
+        cuts_.cut(0, 0, keys);
+        const std::uint32_t balanced = locate_shares();
+        std::size_t registrations = 0;
+        for (const WorkerScratch& worker : workers_)
+            for (std::uint32_t s = 0; s < k; ++s) registrations += worker.count[s];
+        cuts_.set_band(0, 0, registrations, balanced);
+        cutting = std::chrono::duration<double>(Clock::now() - cut_start).count();
+    }
+    publish_marks();
+    // Offsets: segment by segment, share by share, so that every share keeps its order.
+    out_begin.resize(k + 1);
+    std::uint32_t offset = 0;
+    for (std::uint32_t s = 0; s < k; ++s) {
+        out_begin[s] = offset;
+        for (WorkerScratch& worker : workers_) {
+            const std::uint32_t here = worker.count[s];
+            worker.count[s] = offset;
+            offset += here;
+        }
+    }
+    out_begin[k] = offset;
+    out.resize(offset);
+    Position* target = out.data();
+#pragma omp parallel for num_threads(threads_) schedule(static, 1)
+    for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
+        std::uint32_t* cursor = workers_[static_cast<std::size_t>(t)].count.data();
+        for (std::size_t i = share_begin(static_cast<std::size_t>(t)); i < share_begin(static_cast<std::size_t>(t) + 1); ++i) {
+            const std::uint32_t range = ranges_[i];
+            const std::uint32_t lo = lo_of(range);
+            const std::uint32_t hi = hi_of(range);
+            if (lo > hi) continue;
+            target[cursor[lo]++] = in[i];
+            if (hi != lo) target[cursor[hi]++] = in[i];
+        }
+    }
+    return cutting;
+}
+
+/// Levels 1 and deeper: locate and count group by group (cutting again a group that left its
+/// band), the groups shared among the threads; then register every box that is not oversized
+/// in each segment it touches, by a stable counting sort. Returns the seconds spent cutting.
 template <std::floating_point Real, int Dim>
 double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<const Position> in,
                                                        std::span<const std::uint32_t> in_begin,
@@ -253,34 +402,44 @@ double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<cons
     counts_.resize(groups * k + 1);
     std::uint32_t* count = counts_.data();
     count[0] = 0;
-    late_oversized_ = false;
+    for (WorkerScratch& worker : workers_) {
+        worker.marks.clear();
+        worker.late = false;
+    }
     double cutting = 0;
-    for (std::size_t g = 0; g < groups; ++g) {
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1) reduction(+ : cutting)
+    for (std::ptrdiff_t group = 0; group < static_cast<std::ptrdiff_t>(groups); ++group) {
+        const auto g = static_cast<std::size_t>(group);
+        WorkerScratch& worker = workers_[static_cast<std::size_t>(this_thread())];
         const std::span<const Position> entries = in.subspan(in_begin[g], in_begin[g + 1] - in_begin[g]);
         std::uint32_t* ranges = ranges_.data() + in_begin[g];
         std::uint32_t* segment_count = count + g * k + 1;
-        const std::size_t marked_before = oversized_list_.size();
-        const bool cut_before = cuts_.was_cut(level, g);
+        const std::size_t marked_before = worker.marks.size();
         const std::uint32_t fullest =
-            cut_before ? locate_group(level, g, entries, boxes, ranges, segment_count) : 0;
+            cuts_.was_cut(level, g) ? locate_group(level, g, entries, boxes, ranges, segment_count, worker) : 0;
         if (cuts_.needs_cut(level, g, fullest)) {
             const auto cut_start = Clock::now();
             // What the old planes called oversized is judged again against the new ones.
-            for (std::size_t i = marked_before; i < oversized_list_.size(); ++i) oversized_[oversized_list_[i]] = 0;
-            oversized_list_.resize(marked_before);
-            keys_.clear();
+            worker.marks.resize(marked_before);
+            worker.keys.clear();
             for (const Position position : entries) {
-                if (!oversized_[position]) keys_.push_back(boxes[position].min[axis]);
+                if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) == 0)
+                    worker.keys.push_back(boxes[position].min[axis]);
             }
-            cuts_.cut(level, g, keys_);
-            const std::uint32_t balanced = locate_group(level, g, entries, boxes, ranges, segment_count);
+            cuts_.cut(level, g, worker.keys);
+            const std::uint32_t balanced = locate_group(level, g, entries, boxes, ranges, segment_count, worker);
             std::size_t registrations = 0;
             for (std::uint32_t s = 0; s < k; ++s) registrations += segment_count[s];
             cuts_.set_band(level, g, registrations, balanced);
             cutting += std::chrono::duration<double>(Clock::now() - cut_start).count();
         }
+        for (std::size_t i = marked_before; i < worker.marks.size(); ++i)
+            std::atomic_ref<std::uint8_t>(oversized_[worker.marks[i]]).store(1, std::memory_order_relaxed);
     }
-    if (late_oversized_) {
+    bool late = false;
+    for (const WorkerScratch& worker : workers_) late = late || worker.late;
+    publish_marks();
+    if (late) {
         // A box found oversized in one group was counted in the groups before it: count again
         // without it (rare: only boxes much larger than their neighbours' cells).
         std::fill(count, count + groups * k + 1, 0U);
@@ -299,7 +458,9 @@ double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<cons
     // The stack pass: each entry goes to the next free place of its segments, keeping the order
     // the entries came in (last step's), which keeps every cell almost sorted.
     Position* target = out.data();
-    for (std::size_t g = 0; g < groups; ++g) {
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 4)
+    for (std::ptrdiff_t group = 0; group < static_cast<std::ptrdiff_t>(groups); ++group) {
+        const auto g = static_cast<std::size_t>(group);
         std::uint32_t* cursor = count + g * k;
         for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
             const std::uint32_t range = ranges_[i];
@@ -326,25 +487,56 @@ CellFloor<Real, Dim> PersistentCutPipeline<Real, Dim>::floor_of_cell(std::size_t
     return floor;
 }
 
+/// The cells are checked column by column (a column: the k cells of one group of the deepest
+/// level), the columns of a round shared among the threads; each column's pairs and home boxes
+/// are then handed on in column order, so the report does not depend on the thread count.
 template <std::floating_point Real, int Dim>
 template <class Report>
 std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Real, Dim>> boxes,
                                                           Report& report) {
-    const std::vector<Slot>& cells = lists_[cells_list_];
+    const std::vector<Position>& cells = lists_[cells_list_];
     const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    const std::uint32_t k = cuts_.segments();
+    const std::size_t columns = cuts_.groups(Dim - 1);
+    const std::size_t round = 8 * static_cast<std::size_t>(threads_);
+    if (blocks_.size() < round) blocks_.resize(round);
     next_order_.clear();
     next_order_.reserve(boxes.size());
     std::size_t moves = 0;
-    for (std::size_t cell = 0; cell + 1 < cell_begin.size(); ++cell) {
-        const std::uint32_t first = cell_begin[cell];
-        const std::uint32_t size = cell_begin[cell + 1] - first;
-        if (size == 0) continue;
-        const std::span<const Slot> entries(cells.data() + first, size);
-        // The next cell's boxes lie in a few runs of the ordered array, mostly in L3: ask for
-        // them now so that they arrive while this cell is checked.
-        const std::uint32_t next_end = cell + 2 < cell_begin.size() ? cell_begin[cell + 2] : cell_begin[cell + 1];
-        for (std::uint32_t i = cell_begin[cell + 1]; i < next_end; ++i) __builtin_prefetch(&boxes[cells[i]]);
-        moves += sweep_.check(entries, boxes, ordered_ids_, floor_of_cell(cell), report, next_order_);
+    for (std::size_t first_column = 0; first_column < columns; first_column += round) {
+        const std::size_t in_round = std::min(round, columns - first_column);
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
+        for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(in_round); ++b) {
+            BlockOutput& block = blocks_[static_cast<std::size_t>(b)];
+            CellSweep<Real, Dim>& sweep = workers_[static_cast<std::size_t>(this_thread())].sweep;
+            block.pairs.clear();
+            block.home.clear();
+            block.moves = 0;
+            auto collect = [&](Position a, Position c) {
+                const BoxId x = ordered_ids_[a];
+                const BoxId y = ordered_ids_[c];
+                block.pairs.push_back(x < y ? Pair{x, y} : Pair{y, x});
+            };
+            const std::size_t column = first_column + static_cast<std::size_t>(b);
+            for (std::size_t cell = column * k; cell < (column + 1) * k; ++cell) {
+                const std::uint32_t first = cell_begin[cell];
+                const std::uint32_t size = cell_begin[cell + 1] - first;
+                if (size == 0) continue;
+                // The next cell's boxes lie in a few runs of the ordered array, mostly in L3:
+                // ask for them now so that they arrive while this cell is checked.
+                const std::uint32_t next_end =
+                    cell + 2 < cell_begin.size() ? cell_begin[cell + 2] : cell_begin[cell + 1];
+                for (std::uint32_t i = cell_begin[cell + 1]; i < next_end; ++i) __builtin_prefetch(&boxes[cells[i]]);
+                const std::span<const Position> entries(cells.data() + first, size);
+                block.moves += sweep.check(entries, boxes, ordered_ids_, floor_of_cell(cell), collect, block.home);
+            }
+        }
+        for (std::size_t b = 0; b < in_round; ++b) {
+            const BlockOutput& block = blocks_[b];
+            for (const Pair& pair : block.pairs) report(pair.a, pair.b);
+            next_order_.insert(next_order_.end(), block.home.begin(), block.home.end());
+            moves += block.moves;
+        }
     }
     next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
     SMB_ASSERT(next_order_.size() == boxes.size(), "every box has exactly one home cell");

@@ -7,6 +7,14 @@
 
 namespace smb {
 
+bool openmp_enabled() noexcept {
+#ifdef _OPENMP
+    return true;
+#else
+    return false;
+#endif
+}
+
 template <std::floating_point Real, int Dim>
 World<Real, Dim>::World(const WorldSettings& settings)
     : state_(std::make_unique<detail::WorldState<Real, Dim>>(settings)) {}

@@ -32,6 +32,16 @@ struct WorldSettings {
 
     /// Which pipeline detects the pairs.
     Pipeline pipeline = Pipeline::persistent_cuts;
+
+    /// Threads detect() may use (persistent_cuts only; OpenMP): 1 runs on the calling thread
+    /// alone, 0 takes as many as OpenMP offers (OMP_NUM_THREADS, else the cores). The pairs and
+    /// their order are the same whatever the number. One by default, so that a simulation that
+    /// already runs a thread or a process per core is not oversubscribed. Without OpenMP at
+    /// build time (smb::openmp_enabled() is false), every value means one.
+    std::size_t threads = 1;
 };
+
+/// True when this build of smb can use more than one thread (it was compiled with OpenMP).
+[[nodiscard]] bool openmp_enabled() noexcept;
 
 }  // namespace smb

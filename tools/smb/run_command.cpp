@@ -5,6 +5,7 @@
 #include <ctime>
 #include <iostream>
 #include <iterator>
+#include <thread>
 #include <vector>
 
 #include "peak_memory.hpp"
@@ -64,6 +65,14 @@ RunCommand::RunCommand(CLI::App& parent)
                      "boxes the axial cuts aim to put in one cell (WorldSettings)")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
+    app_->add_option("--threads", threads_,
+                     "threads detect() may use; 0 for as many as OpenMP offers (WorldSettings)")
+        ->capture_default_str();
+    app_->add_option("--pipeline", pipeline_,
+                     "persistent: the default pipeline (persistent cuts); paper: the paper's "
+                     "lists as written (WorldSettings::pipeline)")
+        ->check(CLI::IsMember({"persistent", "paper"}))
+        ->capture_default_str();
     auto* check_every = app_->add_option("--check-every", check_every_,
                                          "also check every K-th step against the grid reference "
                                          "(the last step is always checked)");
@@ -79,6 +88,8 @@ int RunCommand::run_in() const {
     workload::DynamicEnvironment<Dim> environment(environment_.params());
     WorldSettings settings;
     settings.target_cell_population = target_cell_population_;
+    settings.threads = threads_;
+    settings.pipeline = pipeline_ == "paper" ? Pipeline::paper_lists : Pipeline::persistent_cuts;
     World<double, Dim> world(settings);
 
     RunRecord run;
@@ -90,6 +101,10 @@ int RunCommand::run_in() const {
     run.update_factor = environment_.update_factor;
     run.seed = environment_.seed;
     run.target_cell_population = target_cell_population_;
+    run.pipeline = pipeline_;
+    run.threads = settings.pipeline == Pipeline::paper_lists || !openmp_enabled() ? 1
+                  : threads_ == 0 ? std::thread::hardware_concurrency()
+                                  : threads_;
     run.check.enabled = !no_check_;
 
     const std::size_t steps = environment_.steps;

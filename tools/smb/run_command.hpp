@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstddef>
+#include <string>
 
 #include "environment_options.hpp"
 
@@ -26,6 +27,8 @@ private:
     CLI::App* app_;
     EnvironmentOptions environment_;
     std::size_t target_cell_population_ = 0;
+    std::size_t threads_ = 1;
+    std::string pipeline_ = "persistent";
     std::size_t check_every_ = 0;
     bool no_check_ = false;
     bool json_ = false;

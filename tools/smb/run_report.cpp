@@ -77,6 +77,7 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
         "seed {}\n",
         run.dimension, run.initial_boxes, run.final_boxes, run.packing_density, run.cube_side,
         run.size_ratio, run.update_factor, run.steps.size(), run.seed);
+    line("pipeline", fmt::format("{}, {} thread{}", run.pipeline, run.threads, run.threads == 1 ? "" : "s"));
     if (!run.steps.empty()) line("build (step 1)", duration_text(run.steps.front().detect_seconds));
     if (run.steps.size() >= 2) {
         const Spread detect = spread_after_build(run, detect_time);
@@ -148,6 +149,8 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     summary["steps"] = run.steps.size();
     summary["seed"] = run.seed;
     summary["target_cell_population"] = run.target_cell_population;
+    summary["pipeline"] = run.pipeline;
+    summary["threads"] = run.threads;
     summary["build_seconds"] =
         run.steps.empty() ? json(nullptr) : json(run.steps.front().detect_seconds);
     summary["detect_seconds"] = spread_json(detect_time);
