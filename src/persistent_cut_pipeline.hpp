@@ -83,6 +83,8 @@ private:
     static constexpr std::uint32_t lo_of(std::uint32_t range) noexcept { return range & 0xFFFFU; }
     static constexpr std::uint32_t hi_of(std::uint32_t range) noexcept { return range >> 16; }
     static constexpr std::uint32_t kNoRange = 1;  // first segment 1, last 0: registered nowhere
+    static constexpr std::uint8_t kMarked = 1;     // found oversized on the level being built
+    static constexpr std::uint8_t kPublished = 2;  // found oversized on an earlier level
 
     /// Entries of the levels and cells are positions in order_ (and in ordered_), not slots.
     using Position = std::uint32_t;
@@ -194,6 +196,11 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
         cutting += regroup_level(level, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
         cells_list_ = target;
     }
+    // In x order (ties by id), so that the report and the next order depend on the boxes alone.
+    std::sort(oversized_list_.begin(), oversized_list_.end(), [&](Position x, Position y) {
+        if (boxes[x].min[0] != boxes[y].min[0]) return boxes[x].min[0] < boxes[y].min[0];
+        return ordered_ids_[x] < ordered_ids_[y];
+    });
     const double regrouping = std::chrono::duration<double>(Clock::now() - start).count();
     stats.sort_seconds = cutting;
     stats.cut_regroup_seconds = regrouping - cutting;
@@ -272,8 +279,10 @@ std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::siz
     std::uint32_t lo = 0;
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const Position position = entries[i];
-        // Another thread may mark this box on this level meanwhile; then the count is redone.
-        if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) != 0) {
+        // Only marks of earlier levels (published: 2) count here. A mark another thread makes on
+        // this level meanwhile (1) is ignored, so that counts, and the cuts they decide, do not
+        // depend on timing; the count is redone once the level's marks are all known.
+        if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) == kPublished) {
             ranges[i] = kNoRange;
             continue;
         }
@@ -299,8 +308,8 @@ template <std::floating_point Real, int Dim>
 void PersistentCutPipeline<Real, Dim>::publish_marks() {
     for (WorkerScratch& worker : workers_) {
         for (const Position position : worker.marks) {
-            if (oversized_[position] == 2) continue;  // already listed (marked in two groups)
-            oversized_[position] = 2;
+            if (oversized_[position] == kPublished) continue;  // marked in two groups: listed once
+            oversized_[position] = kPublished;
             oversized_list_.push_back(position);
         }
         worker.marks.clear();
@@ -423,7 +432,7 @@ double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<cons
             worker.marks.resize(marked_before);
             worker.keys.clear();
             for (const Position position : entries) {
-                if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) == 0)
+                if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) != kPublished)
                     worker.keys.push_back(boxes[position].min[axis]);
             }
             cuts_.cut(level, g, worker.keys);
@@ -434,7 +443,7 @@ double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<cons
             cutting += std::chrono::duration<double>(Clock::now() - cut_start).count();
         }
         for (std::size_t i = marked_before; i < worker.marks.size(); ++i)
-            std::atomic_ref<std::uint8_t>(oversized_[worker.marks[i]]).store(1, std::memory_order_relaxed);
+            std::atomic_ref<std::uint8_t>(oversized_[worker.marks[i]]).store(kMarked, std::memory_order_relaxed);
     }
     bool late = false;
     for (const WorkerScratch& worker : workers_) late = late || worker.late;
@@ -576,12 +585,7 @@ void PersistentCutPipeline<Real, Dim>::check_oversized(std::span<const Box<Real,
     if (oversized_list_.empty()) return;
     const std::vector<Slot>& cells = lists_[cells_list_];
     const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
-    // In x order (ties by id), so that the order of the report depends on the boxes alone.
-    std::vector<Position>& sorted = oversized_list_;
-    std::sort(sorted.begin(), sorted.end(), [&](Position x, Position y) {
-        if (boxes[x].min[0] != boxes[y].min[0]) return boxes[x].min[0] < boxes[y].min[0];
-        return ordered_ids_[x] < ordered_ids_[y];
-    });
+    const std::vector<Position>& sorted = oversized_list_;  // in x order (detect())
     for (const Slot big : oversized_list_) {
         const Box<Real, Dim>& a = boxes[big];
         for_each_cell_covering(a, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
