@@ -16,6 +16,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <cstddef>
@@ -86,28 +87,127 @@ public:
         }
         const std::size_t moves = insertion_sort(order, m);
         order_equal_keys(order, m, ids);
-        for (std::size_t i = 0; i < m; ++i) {
-            const CellBox<Real, Dim>& a = local[order[i] & 0xFFFFFFFFU];
-            if (a.inside == kAllInside) home.push_back(a.slot);
-            // Keys never decrease along the order, so once a key passes the key of a.max[0] no
-            // later box reaches a on x. Equal keys may hide a slight disorder of the exact
-            // values, hence the explicit test of both x ends.
-            const std::uint64_t stop = (std::uint64_t{monotone_key(a.max[0])} << 32) | 0xFFFFFFFFU;
-            for (std::size_t j = i + 1; j < m && order[j] <= stop; ++j) {
-                const CellBox<Real, Dim>& b = local[order[j] & 0xFFFFFFFFU];
-                bool hit = (a.inside | b.inside) == kAllInside;
-                for (int k = 0; k < Dim; ++k) hit &= (a.min[k] <= b.max[k]) & (b.min[k] <= a.max[k]);
-                if (hit) report(a.slot, b.slot);
-            }
-        }
+        lay_out_sorted(order, m);
+        sweep(m, report, home);
         return moves;
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return local_.capacity() * sizeof(CellBox<Real, Dim>) + order_.capacity() * sizeof(std::uint64_t);
+        std::size_t bytes = local_.capacity() * sizeof(CellBox<Real, Dim>) + order_.capacity() * sizeof(std::uint64_t);
+        for (const auto& column : sorted_.min) bytes += column.capacity() * sizeof(Real);
+        for (const auto& column : sorted_.max) bytes += column.capacity() * sizeof(Real);
+        bytes += sorted_.inside.capacity() * sizeof(Mask) + sorted_.key.capacity() * sizeof(std::uint32_t) +
+                 sorted_.position.capacity() * sizeof(std::uint32_t);
+        return bytes;
     }
 
 private:
+    // Four candidates are tested at once (GCC vector extensions: SSE on x86-64, NEON on arm64).
+    static constexpr std::size_t kLanes = 4;
+    using Mask = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
+    using RealLanes [[gnu::vector_size(kLanes * sizeof(Real))]] = Real;
+    using MaskLanes [[gnu::vector_size(kLanes * sizeof(Real))]] = Mask;
+
+    /// The cell's boxes in x order, one array per coordinate, padded with kLanes boxes that
+    /// reach nothing (min x = +inf, key above every real key) so that the last group of lanes
+    /// may read past the end.
+    struct SortedColumns {
+        std::array<std::vector<Real>, Dim> min;
+        std::array<std::vector<Real>, Dim> max;
+        std::vector<Mask> inside;
+        std::vector<std::uint32_t> key;
+        std::vector<std::uint32_t> position;
+    };
+
+    void lay_out_sorted(const std::uint64_t* order, std::size_t m) {
+        const std::size_t padded = m + kLanes;
+        for (int k = 0; k < Dim; ++k) {
+            sorted_.min[k].resize(padded);
+            sorted_.max[k].resize(padded);
+        }
+        sorted_.inside.resize(padded);
+        sorted_.key.resize(padded);
+        sorted_.position.resize(padded);
+        const CellBox<Real, Dim>* local = local_.data();
+        for (std::size_t r = 0; r < m; ++r) {
+            const CellBox<Real, Dim>& box = local[order[r] & 0xFFFFFFFFU];
+            for (int k = 0; k < Dim; ++k) {
+                sorted_.min[k][r] = box.min[k];
+                sorted_.max[k][r] = box.max[k];
+            }
+            sorted_.inside[r] = static_cast<Mask>(box.inside);
+            sorted_.key[r] = static_cast<std::uint32_t>(order[r] >> 32);
+            sorted_.position[r] = box.slot;
+        }
+        for (std::size_t r = m; r < padded; ++r) {
+            for (int k = 0; k < Dim; ++k) {
+                sorted_.min[k][r] = std::numeric_limits<Real>::infinity();
+                sorted_.max[k][r] = -std::numeric_limits<Real>::infinity();
+            }
+            sorted_.inside[r] = 0;
+            sorted_.key[r] = ~std::uint32_t{0};  // above the key of any finite max
+            sorted_.position[r] = 0;
+        }
+    }
+
+    // Out-parameters, not return values: a 32-byte vector (double lanes) returned by value
+    // would change the ABI with the target's vector width.
+    template <class Lanes, class Value>
+    static void load(Lanes& lanes, const Value* from) noexcept {
+        std::memcpy(&lanes, from, sizeof lanes);
+    }
+
+    // The sweep on x: box i against the boxes after it whose key does not pass the key of its
+    // max x, kLanes at a time. Keys never decrease along the order, so once a group of lanes
+    // starts past that key no later box reaches i on x; within a group, the exact x test (both
+    // ends: equal keys may hide a slight disorder of the exact values) drops the others.
+    template <class Report>
+    void sweep(std::size_t m, Report& report, std::vector<std::uint32_t>& home) const {
+        const std::uint32_t* key = sorted_.key.data();
+        const Mask* inside = sorted_.inside.data();
+        const std::uint32_t* position = sorted_.position.data();
+        for (std::size_t i = 0; i < m; ++i) {
+            if (inside[i] == static_cast<Mask>(kAllInside)) home.push_back(position[i]);
+            const std::uint32_t stop = monotone_key(sorted_.max[0][i]);
+            std::array<Real, Dim> low{}, high{};
+            for (int k = 0; k < Dim; ++k) {
+                low[k] = sorted_.min[k][i];
+                high[k] = sorted_.max[k][i];
+            }
+            const Mask own = inside[i];
+            if constexpr (sizeof(Real) == 8) {
+                // Two doubles fill an SSE register: lanes of four cost more than they save
+                // (measured, docs/performance.md), so doubles take one candidate at a time.
+                for (std::size_t j = i + 1; key[j] <= stop; ++j) {
+                    bool hit = (inside[j] | own) == static_cast<Mask>(kAllInside);
+                    for (int k = 0; k < Dim; ++k)
+                        hit &= (sorted_.min[k][j] <= high[k]) & (sorted_.max[k][j] >= low[k]);
+                    if (hit) report(position[i], position[j]);
+                }
+                continue;
+            }
+            for (std::size_t j = i + 1; key[j] <= stop; j += kLanes) {
+                MaskLanes others;
+                load(others, inside + j);
+                MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
+                for (int k = 0; k < Dim; ++k) {
+                    RealLanes lower, upper;
+                    load(lower, sorted_.min[k].data() + j);
+                    load(upper, sorted_.max[k].data() + j);
+                    hit &= lower <= high[k];
+                    hit &= upper >= low[k];
+                }
+                unsigned bits = 0;
+                for (std::size_t lane = 0; lane < kLanes; ++lane) bits |= static_cast<unsigned>(hit[lane] & 1) << lane;
+                while (bits != 0) {
+                    const int lane = std::countr_zero(bits);
+                    report(position[i], position[j + static_cast<std::size_t>(lane)]);
+                    bits &= bits - 1;
+                }
+            }
+        }
+    }
+
     // Boxes whose keys are equal arrive in an order that depends on the previous step; ordering
     // them by exact coordinate and id makes the reported order a function of the boxes alone,
     // so that detecting twice without changes reports the same list. Such runs are rare outside
@@ -149,6 +249,7 @@ private:
 
     std::vector<CellBox<Real, Dim>> local_;
     std::vector<std::uint64_t> order_;
+    SortedColumns sorted_;
 };
 
 }  // namespace smb::detail

@@ -54,7 +54,8 @@ public:
 
     void clear() { *this = PersistentCutPipeline(); }
 
-    /// Calls report(id_a, id_b) once for every overlapping pair.
+    /// Reports every overlapping pair once: report.append(pairs in a < b order) for runs,
+    /// report(id_a, id_b) for single pairs.
     template <class Report>
     void detect(const BoxStore<Real, Dim>& store, const WorldSettings& settings, Report& report,
                 DetectStats& stats);
@@ -533,16 +534,20 @@ std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Re
                 if (size == 0) continue;
                 // The next cell's boxes lie in a few runs of the ordered array, mostly in L3:
                 // ask for them now so that they arrive while this cell is checked.
-                const std::uint32_t next_end =
-                    cell + 2 < cell_begin.size() ? cell_begin[cell + 2] : cell_begin[cell + 1];
-                for (std::uint32_t i = cell_begin[cell + 1]; i < next_end; ++i) __builtin_prefetch(&boxes[cells[i]]);
+                constexpr std::size_t ahead = 2;
+                if (cell + ahead + 1 < cell_begin.size()) {
+                    for (std::uint32_t i = cell_begin[cell + ahead]; i < cell_begin[cell + ahead + 1]; ++i) {
+                        __builtin_prefetch(&boxes[cells[i]]);
+                        __builtin_prefetch(&ordered_ids_[cells[i]]);
+                    }
+                }
                 const std::span<const Position> entries(cells.data() + first, size);
                 block.moves += sweep.check(entries, boxes, ordered_ids_, floor_of_cell(cell), collect, block.home);
             }
         }
         for (std::size_t b = 0; b < in_round; ++b) {
             const BlockOutput& block = blocks_[b];
-            for (const Pair& pair : block.pairs) report(pair.a, pair.b);
+            report.append(block.pairs);
             next_order_.insert(next_order_.end(), block.home.begin(), block.home.end());
             moves += block.moves;
         }

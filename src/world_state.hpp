@@ -4,7 +4,9 @@
 // sink in chunks from here, whichever pipeline found them.
 
 #include <chrono>
+#include <algorithm>
 #include <cstddef>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -17,6 +19,52 @@
 #include "smb/world.hpp"
 
 namespace smb::detail {
+
+/// Hands pairs to the caller's sink in chunks of the settings' size: one pair at a time (the
+/// paper's pipeline) or a run of pairs already in (a < b) order (the persistent pipeline, whose
+/// runs go to the sink without another copy where they fill whole chunks).
+class PairOutput {
+public:
+    PairOutput(std::vector<Pair>& chunk, std::size_t chunk_size, const PairSink& sink, std::size_t& count)
+        : chunk_(chunk), chunk_size_(chunk_size), sink_(sink), count_(count) {}
+
+    void operator()(BoxId a, BoxId b) {
+        if (b < a) std::swap(a, b);
+        chunk_.push_back(Pair{a, b});
+        if (chunk_.size() == chunk_size_) send_chunk();
+    }
+
+    void append(std::span<const Pair> ordered) {
+        while (!ordered.empty()) {
+            if (chunk_.empty() && ordered.size() >= chunk_size_) {
+                count_ += chunk_size_;
+                sink_(ordered.first(chunk_size_));
+                ordered = ordered.subspan(chunk_size_);
+                continue;
+            }
+            const std::size_t take = std::min(ordered.size(), chunk_size_ - chunk_.size());
+            chunk_.insert(chunk_.end(), ordered.begin(), ordered.begin() + static_cast<std::ptrdiff_t>(take));
+            ordered = ordered.subspan(take);
+            if (chunk_.size() == chunk_size_) send_chunk();
+        }
+    }
+
+    void flush() {
+        if (!chunk_.empty()) send_chunk();
+    }
+
+private:
+    void send_chunk() {
+        count_ += chunk_.size();
+        sink_(chunk_);
+        chunk_.clear();
+    }
+
+    std::vector<Pair>& chunk_;
+    std::size_t chunk_size_;
+    const PairSink& sink_;
+    std::size_t& count_;
+};
 
 template <std::floating_point Real, int Dim>
 class WorldState {
@@ -53,25 +101,14 @@ public:
 
         chunk_.clear();
         chunk_.reserve(settings_.pair_chunk_size);
-        auto report = [&](BoxId a, BoxId b) {
-            if (b < a) std::swap(a, b);
-            chunk_.push_back(Pair{a, b});
-            if (chunk_.size() == settings_.pair_chunk_size) {
-                stats.pairs += chunk_.size();
-                sink(chunk_);
-                chunk_.clear();
-            }
-        };
+        PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
         if (settings_.pipeline == Pipeline::paper_lists) {
-            auto report_slots = [&](Slot a, Slot b) { report(store_.id_at(a), store_.id_at(b)); };
+            auto report_slots = [&](Slot a, Slot b) { output(store_.id_at(a), store_.id_at(b)); };
             paper_.detect(report_slots, stats);
+        } else {
+            persistent_.detect(store_, settings_, output, stats);
         }
-        else persistent_.detect(store_, settings_, report, stats);
-        if (!chunk_.empty()) {
-            stats.pairs += chunk_.size();
-            sink(chunk_);
-        }
-        chunk_.clear();
+        output.flush();
         stats.bytes_held = bytes_held();
         stats.total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
         stats_ = stats;

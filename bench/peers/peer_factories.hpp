@@ -5,12 +5,13 @@
 #include <memory>
 
 #include "peers/peer.hpp"
+#include "smb/settings.hpp"
 
 namespace smb::bench {
 
 /// smb itself, driven incrementally through smb::World: remove, update, insert, detect.
 template <int Dim>
-[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_world_peer();
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_world_peer(const WorldSettings& settings);
 
 /// Every pair tested, O(N^2): the reference on small scenes.
 template <int Dim>

@@ -5,6 +5,8 @@ namespace smb::bench {
 std::vector<PeerInfo> available_peers() {
     std::vector<PeerInfo> peers = {
         {"smb", true, true},
+        {"smb_2threads", true, true},
+        {"smb_paper", true, true},
         {"brute_force", true, true},
         {"box_pruning", true, true},
         {"uniform_grid", true, true},
@@ -24,7 +26,17 @@ std::vector<PeerInfo> available_peers() {
 
 template <int Dim>
 std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
-    if (name == "smb") return make_smb_world_peer<Dim>();
+    if (name == "smb") return make_smb_world_peer<Dim>(WorldSettings{});
+    if (name == "smb_2threads") {
+        WorldSettings settings;
+        settings.threads = 2;
+        return make_smb_world_peer<Dim>(settings);
+    }
+    if (name == "smb_paper") {
+        WorldSettings settings;
+        settings.pipeline = Pipeline::paper_lists;
+        return make_smb_world_peer<Dim>(settings);
+    }
     if (name == "brute_force") return make_brute_force_peer<Dim>();
     if (name == "box_pruning") return make_box_pruning_peer<Dim>();
     if (name == "uniform_grid") return make_uniform_grid_peer<Dim>();

@@ -10,6 +10,8 @@ namespace {
 template <int Dim>
 class SmbWorldPeer final : public Peer<Dim> {
 public:
+    explicit SmbWorldPeer(const WorldSettings& settings) : world_(settings) {}
+
     void build(const SceneStep<Dim>& step, std::vector<Pair>& pairs) override {
         world_.insert(step.ids, step.boxes);
         world_.detect(pairs);
@@ -56,11 +58,11 @@ private:
 }  // namespace
 
 template <int Dim>
-std::unique_ptr<Peer<Dim>> make_smb_world_peer() {
-    return std::make_unique<SmbWorldPeer<Dim>>();
+std::unique_ptr<Peer<Dim>> make_smb_world_peer(const WorldSettings& settings) {
+    return std::make_unique<SmbWorldPeer<Dim>>(settings);
 }
 
-template std::unique_ptr<Peer<2>> make_smb_world_peer<2>();
-template std::unique_ptr<Peer<3>> make_smb_world_peer<3>();
+template std::unique_ptr<Peer<2>> make_smb_world_peer<2>(const WorldSettings&);
+template std::unique_ptr<Peer<3>> make_smb_world_peer<3>(const WorldSettings&);
 
 }  // namespace smb::bench
