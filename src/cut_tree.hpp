@@ -124,18 +124,7 @@ public:
             if (n == 0) {
                 std::fill(out, out + (k_ - 1), Real{0});
             } else {
-                // Quantiles by successive selection: each nth_element works on what is left to
-                // the right of the previous quantile, O(n log k) in all.
-                std::size_t from = 0;
-                for (std::uint32_t j = 1; j < k_; ++j) {
-                    const std::size_t rank = std::min(n - 1, (j * n) / k_);
-                    if (rank >= from) {
-                        std::nth_element(keys.begin() + static_cast<std::ptrdiff_t>(from),
-                                         keys.begin() + static_cast<std::ptrdiff_t>(rank), keys.end());
-                        from = rank;
-                    }
-                    out[j - 1] = keys[rank];
-                }
+                select_quantiles(keys, 0, n, 1, k_, out);
             }
         }
     }
@@ -168,6 +157,25 @@ public:
     }
 
 private:
+    // The key of rank floor(j n / k) for every j in [first_j, last_j), all of whose ranks lie in
+    // [from, to): select the middle quantile, then recurse on either side of it. Each level of
+    // the recursion is one linear pass, so O(n log k) in all, where selecting the quantiles one
+    // after another would cost O(n k).
+    void select_quantiles(std::span<Real> keys, std::size_t from, std::size_t to, std::uint32_t first_j,
+                          std::uint32_t last_j, Real* out) const {
+        if (first_j >= last_j) return;
+        const std::size_t n = keys.size();
+        const std::uint32_t middle_j = first_j + (last_j - first_j) / 2;
+        const std::size_t rank = std::min(n - 1, (static_cast<std::size_t>(middle_j) * n) / k_);
+        std::nth_element(keys.begin() + static_cast<std::ptrdiff_t>(from),
+                         keys.begin() + static_cast<std::ptrdiff_t>(rank),
+                         keys.begin() + static_cast<std::ptrdiff_t>(to));
+        out[middle_j - 1] = keys[rank];
+        // Ranks may repeat when n < k: both sides keep the selected place.
+        select_quantiles(keys, from, rank + 1, first_j, middle_j, out);
+        select_quantiles(keys, rank, to, middle_j + 1, last_j, out);
+    }
+
     std::uint32_t k_ = 0;
     std::array<std::size_t, Dim + 1> groups_{};
     std::array<std::vector<Real>, Dim> cuts_;

@@ -108,6 +108,8 @@ private:
 
     void plan_segments(std::size_t n, const WorldSettings& settings);
     void plan_threads(const WorldSettings& settings);
+    double run_levels(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
+    void order_by_home_cell();
     void gather_in_order(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
     std::span<const Position> identity_(std::size_t n) {
         if (identity_positions_.size() != n) {
@@ -149,6 +151,7 @@ private:
     std::vector<std::uint8_t> oversized_;   // per position; written through atomic_ref
     std::vector<Position> oversized_list_;
     int threads_ = 1;
+    bool cold_ = true;                       // the order does not follow the cells (yet)
     std::vector<WorkerScratch> workers_;     // one per thread
     std::vector<BlockOutput> blocks_;         // one per block of a round of cell checks
 };
@@ -179,29 +182,21 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
         cuts_.forget();
         return;
     }
+    const std::uint32_t segments_before = cuts_.segments();
     plan_segments(n, settings);
     plan_threads(settings);
-    oversized_.assign(n, 0);
-    oversized_list_.clear();
+    // A cold order (first detection, new cut counts, or boxes that jumped far since the last
+    // step) scatters each cell's boxes over the ordered array: one pass of the levels then
+    // only serves to put the boxes in cell order, and the second runs on that order.
+    const bool cold = cold_ || cuts_.segments() != segments_before;
 
-    // The boxes are copied once in last step's cell order: every later pass reads them almost
-    // sequentially, where reading them by slot would miss the cache on nearly every box.
     const auto start = Clock::now();
-    gather_in_order(store_boxes, store.ids());
-    const std::span<const Box<Real, Dim>> boxes(ordered_);
-    double cutting = regroup_first_level(identity_(n), boxes, lists_[0], begin_[0]);
-    cells_list_ = 0;
-    for (int level = 1; level < Dim; ++level) {
-        const int source = (level - 1) % 2;
-        const int target = level % 2;
-        cutting += regroup_level(level, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
-        cells_list_ = target;
+    double cutting = run_levels(store_boxes, store.ids());
+    if (cold) {
+        order_by_home_cell();
+        cutting += run_levels(store_boxes, store.ids());
     }
-    // In x order (ties by id), so that the report and the next order depend on the boxes alone.
-    std::sort(oversized_list_.begin(), oversized_list_.end(), [&](Position x, Position y) {
-        if (boxes[x].min[0] != boxes[y].min[0]) return boxes[x].min[0] < boxes[y].min[0];
-        return ordered_ids_[x] < ordered_ids_[y];
-    });
+    const std::span<const Box<Real, Dim>> boxes(ordered_);
     const double regrouping = std::chrono::duration<double>(Clock::now() - start).count();
     stats.sort_seconds = cutting;
     stats.cut_regroup_seconds = regrouping - cutting;
@@ -216,9 +211,68 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
 #ifdef SMB_VALIDATE
     check_invariants(boxes);
 #endif
+    // Boxes whose place in the order moved by more than about a column's share left their
+    // cells' neighbourhood; when most did, the next detection starts cold.
     const auto count = static_cast<std::ptrdiff_t>(next_order_.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
-    for (std::ptrdiff_t i = 0; i < count; ++i) next_order_[i] = order_[next_order_[i]];
+    const auto window = static_cast<std::ptrdiff_t>(n / std::max<std::size_t>(1, cuts_.groups(Dim - 1))) + 64;
+    std::size_t far = 0;
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : far)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+        const auto from = static_cast<std::ptrdiff_t>(next_order_[i]);
+        far += (from - i > window || i - from > window) ? 1U : 0U;
+        next_order_[i] = order_[next_order_[i]];
+    }
+    order_.swap(next_order_);
+    cold_ = 2 * far > n;
+}
+
+/// Copies the boxes in order_'s order and regroups them level by level; returns the seconds
+/// spent cutting.
+template <std::floating_point Real, int Dim>
+double PersistentCutPipeline<Real, Dim>::run_levels(std::span<const Box<Real, Dim>> store_boxes,
+                                                   std::span<const BoxId> store_ids) {
+    const std::size_t n = store_boxes.size();
+    oversized_.assign(n, 0);
+    oversized_list_.clear();
+    // The boxes are copied once in last step's cell order: every later pass reads them almost
+    // sequentially, where reading them by slot would miss the cache on nearly every box.
+    gather_in_order(store_boxes, store_ids);
+    const std::span<const Box<Real, Dim>> boxes(ordered_);
+    double cutting = regroup_first_level(identity_(n), boxes, lists_[0], begin_[0]);
+    cells_list_ = 0;
+    for (int level = 1; level < Dim; ++level) {
+        const int source = (level - 1) % 2;
+        const int target = level % 2;
+        cutting += regroup_level(level, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
+        cells_list_ = target;
+    }
+    // In x order (ties by id), so that the report and the next order depend on the boxes alone.
+    std::sort(oversized_list_.begin(), oversized_list_.end(), [&](Position x, Position y) {
+        if (boxes[x].min[0] != boxes[y].min[0]) return boxes[x].min[0] < boxes[y].min[0];
+        return ordered_ids_[x] < ordered_ids_[y];
+    });
+    return cutting;
+}
+
+/// order_ becomes the cells' home boxes (those whose lower corner lies in the cell), cell after
+/// cell, then the oversized boxes: the order a detection leaves behind, without its check.
+template <std::floating_point Real, int Dim>
+void PersistentCutPipeline<Real, Dim>::order_by_home_cell() {
+    const std::vector<Position>& cells = lists_[cells_list_];
+    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    next_order_.clear();
+    for (std::size_t cell = 0; cell + 1 < cell_begin.size(); ++cell) {
+        if (cell_begin[cell] == cell_begin[cell + 1]) continue;
+        const CellFloor<Real, Dim> floor = floor_of_cell(cell);
+        for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
+            const Box<Real, Dim>& box = ordered_[cells[i]];
+            bool home = true;
+            for (int k = 0; k < Dim; ++k) home &= box.min[k] >= floor[k];
+            if (home) next_order_.push_back(order_[cells[i]]);
+        }
+    }
+    for (const Position position : oversized_list_) next_order_.push_back(order_[position]);
+    SMB_ASSERT(next_order_.size() == order_.size(), "every box has exactly one home cell");
     order_.swap(next_order_);
 }
 
