@@ -18,12 +18,14 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-METHOD_ORDER = ["smb", "brute_force", "box_pruning", "uniform_grid", "cgal_box_intersection",
+METHOD_ORDER = ["smb", "smb_2threads", "smb_paper", "brute_force", "box_pruning", "uniform_grid", "cgal_box_intersection",
                 "bullet_axis_sweep", "bullet_dbvt", "box2d_dynamic_tree"]
-SHORT = {"smb": "smb", "brute_force": "brute", "box_pruning": "box pruning", "uniform_grid": "grid",
+SHORT = {"smb": "smb", "smb_2threads": "smb 2 threads", "smb_paper": "smb paper lists", "brute_force": "brute", "box_pruning": "box pruning", "uniform_grid": "grid",
          "cgal_box_intersection": "CGAL", "bullet_axis_sweep": "Bullet SAP", "bullet_dbvt": "Bullet DBVT",
          "box2d_dynamic_tree": "Box2D tree"}
-STYLE = {"smb": dict(color="black", linewidth=2.5, marker="o")}
+STYLE = {"smb": dict(color="black", linewidth=2.5, marker="o"),
+         "smb_2threads": dict(color="black", linewidth=1.5, linestyle="--", marker="o"),
+         "smb_paper": dict(color="grey", linewidth=1.5, linestyle=":", marker="o")}
 
 
 def load(path):

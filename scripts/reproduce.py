@@ -190,6 +190,9 @@ def main():
     parser.add_argument("--check", action="store_true",
                         help="check each run's last step against the grid reference (its grid then counts in "
                              "the peak memory)")
+    parser.add_argument("--pipeline", choices=("paper", "persistent"), default="paper",
+                        help="smb run --pipeline: the paper's lists (default: this is a reproduction of the "
+                             "paper's algorithm) or the default persistent-cut pipeline")
     parser.add_argument("--listed-order", action="store_true",
                         help="run in table order; by default the order is shuffled (seeded) so that a change "
                              "of machine load during the run does not turn into a trend along N, x or H")
@@ -220,7 +223,8 @@ def main():
     mismatches = 0
     for done_count, index in enumerate(order, start=1):
         experiment, case, arguments, extra = runs[index]
-        command, summary, wall, load = run_one(args.smb, arguments, steps, args.seed, args.check,
+        command, summary, wall, load = run_one(args.smb, arguments + ["--pipeline", args.pipeline], steps,
+                                               args.seed, args.check,
                                                settings["timeout"])
         row = csv_row(experiment, case, extra, summary, wall, load)
         mismatches += row["reference_check"] == "MISMATCH"

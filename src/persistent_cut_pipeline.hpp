@@ -104,6 +104,7 @@ private:
         std::vector<Pair> pairs;
         std::vector<Position> home;
         std::size_t moves = 0;
+        bool overflowed = false;
     };
 
     void plan_segments(std::size_t n, const WorldSettings& settings);
@@ -129,6 +130,11 @@ private:
     void publish_marks();
     template <class Report>
     std::size_t check_cells(std::span<const Box<Real, Dim>> boxes, Report& report);
+    template <class Collect>
+    std::size_t check_column(std::size_t column, std::span<const Box<Real, Dim>> boxes, CellSweep<Real, Dim>& sweep,
+                             Collect& collect, std::vector<Position>& home, const bool* give_up);
+    /// Pairs one column may hold while the threads check a round (4 MiB); see check_cells().
+    static constexpr std::size_t kBlockPairCap = std::size_t{1} << 18;
     template <class Report>
     void check_oversized(std::span<const Box<Real, Dim>> boxes, Report& report);
     template <class Visit>
@@ -552,62 +558,96 @@ CellFloor<Real, Dim> PersistentCutPipeline<Real, Dim>::floor_of_cell(std::size_t
 }
 
 /// The cells are checked column by column (a column: the k cells of one group of the deepest
-/// level), the columns of a round shared among the threads; each column's pairs and home boxes
-/// are then handed on in column order, so the report does not depend on the thread count.
+/// level), in column order, so the report does not depend on the thread count.
 template <std::floating_point Real, int Dim>
 template <class Report>
 std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Real, Dim>> boxes,
                                                           Report& report) {
-    const std::vector<Position>& cells = lists_[cells_list_];
-    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
-    const std::uint32_t k = cuts_.segments();
     const std::size_t columns = cuts_.groups(Dim - 1);
-    const std::size_t round = 8 * static_cast<std::size_t>(threads_);
-    if (blocks_.size() < round) blocks_.resize(round);
     next_order_.clear();
     next_order_.reserve(boxes.size());
     std::size_t moves = 0;
+    // One thread: pairs go straight to the caller, nothing is held.
+    auto report_ids = [&](Position a, Position b) { report(ordered_ids_[a], ordered_ids_[b]); };
+    if (threads_ == 1) {
+        CellSweep<Real, Dim>& sweep = workers_[0].sweep;
+        for (std::size_t column = 0; column < columns; ++column)
+            moves += check_column(column, boxes, sweep, report_ids, next_order_, nullptr);
+        next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
+        SMB_ASSERT(next_order_.size() == boxes.size(), "every box has exactly one home cell");
+        return moves;
+    }
+    // Several: a round of columns is checked in parallel into per-column buffers, which are then
+    // handed on in column order. A column whose pairs outgrow its buffer's cap (a crowd of
+    // identical boxes: billions of pairs) gives up and is checked again alone when its turn
+    // comes, straight into the caller's sink, so that memory stays bounded by the cap.
+    const std::size_t round = 8 * static_cast<std::size_t>(threads_);
+    if (blocks_.size() < round) blocks_.resize(round);
     for (std::size_t first_column = 0; first_column < columns; first_column += round) {
         const std::size_t in_round = std::min(round, columns - first_column);
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
         for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(in_round); ++b) {
             BlockOutput& block = blocks_[static_cast<std::size_t>(b)];
-            CellSweep<Real, Dim>& sweep = workers_[static_cast<std::size_t>(this_thread())].sweep;
             block.pairs.clear();
             block.home.clear();
-            block.moves = 0;
-            auto collect = [&](Position a, Position c) {
+            block.overflowed = false;
+            auto collect = [&block, this](Position a, Position c) {
+                if (block.pairs.size() >= kBlockPairCap) {
+                    block.overflowed = true;
+                    return;
+                }
                 const BoxId x = ordered_ids_[a];
                 const BoxId y = ordered_ids_[c];
                 block.pairs.push_back(x < y ? Pair{x, y} : Pair{y, x});
             };
-            const std::size_t column = first_column + static_cast<std::size_t>(b);
-            for (std::size_t cell = column * k; cell < (column + 1) * k; ++cell) {
-                const std::uint32_t first = cell_begin[cell];
-                const std::uint32_t size = cell_begin[cell + 1] - first;
-                if (size == 0) continue;
-                // The next cell's boxes lie in a few runs of the ordered array, mostly in L3:
-                // ask for them now so that they arrive while this cell is checked.
-                constexpr std::size_t ahead = 2;
-                if (cell + ahead + 1 < cell_begin.size()) {
-                    for (std::uint32_t i = cell_begin[cell + ahead]; i < cell_begin[cell + ahead + 1]; ++i) {
-                        __builtin_prefetch(&boxes[cells[i]]);
-                        __builtin_prefetch(&ordered_ids_[cells[i]]);
-                    }
-                }
-                const std::span<const Position> entries(cells.data() + first, size);
-                block.moves += sweep.check(entries, boxes, ordered_ids_, floor_of_cell(cell), collect, block.home);
-            }
+            CellSweep<Real, Dim>& sweep = workers_[static_cast<std::size_t>(this_thread())].sweep;
+            block.moves = check_column(first_column + static_cast<std::size_t>(b), boxes, sweep, collect,
+                                       block.home, &block.overflowed);
         }
         for (std::size_t b = 0; b < in_round; ++b) {
-            const BlockOutput& block = blocks_[b];
-            report.append(block.pairs);
-            next_order_.insert(next_order_.end(), block.home.begin(), block.home.end());
-            moves += block.moves;
+            BlockOutput& block = blocks_[b];
+            if (block.overflowed) {
+                moves += check_column(first_column + b, boxes, workers_[0].sweep, report_ids, next_order_, nullptr);
+            } else {
+                report.append(block.pairs);
+                next_order_.insert(next_order_.end(), block.home.begin(), block.home.end());
+                moves += block.moves;
+            }
+            if (block.pairs.capacity() > 2 * kBlockPairCap) std::vector<Pair>().swap(block.pairs);
         }
     }
     next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
     SMB_ASSERT(next_order_.size() == boxes.size(), "every box has exactly one home cell");
+    return moves;
+}
+
+/// Checks the k cells of one column in order; stops early once *give_up is set.
+template <std::floating_point Real, int Dim>
+template <class Collect>
+std::size_t PersistentCutPipeline<Real, Dim>::check_column(std::size_t column, std::span<const Box<Real, Dim>> boxes,
+                                                           CellSweep<Real, Dim>& sweep, Collect& collect,
+                                                           std::vector<Position>& home, const bool* give_up) {
+    const std::vector<Position>& cells = lists_[cells_list_];
+    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    const std::uint32_t k = cuts_.segments();
+    std::size_t moves = 0;
+    for (std::size_t cell = column * k; cell < (column + 1) * k; ++cell) {
+        if (give_up != nullptr && *give_up) break;
+        const std::uint32_t first = cell_begin[cell];
+        const std::uint32_t size = cell_begin[cell + 1] - first;
+        if (size == 0) continue;
+        // The boxes two cells ahead lie in a few runs of the ordered array, mostly in L3: ask
+        // for them now so that they arrive while this cell is checked.
+        constexpr std::size_t ahead = 2;
+        if (cell + ahead + 1 < cell_begin.size()) {
+            for (std::uint32_t i = cell_begin[cell + ahead]; i < cell_begin[cell + ahead + 1]; ++i) {
+                __builtin_prefetch(&boxes[cells[i]]);
+                __builtin_prefetch(&ordered_ids_[cells[i]]);
+            }
+        }
+        const std::span<const Position> entries(cells.data() + first, size);
+        moves += sweep.check(entries, boxes, ordered_ids_, floor_of_cell(cell), collect, home);
+    }
     return moves;
 }
 

@@ -131,7 +131,7 @@ protected:
         const auto pairs_bytes = static_cast<std::int64_t>(pairs.capacity() * sizeof(Pair));
 
         const std::int64_t baseline = live_bytes();
-        auto world = std::make_unique<WorldType>();
+        auto world = std::make_unique<WorldType>(test_settings());
         world->insert(ids, boxes);
         expect_agreement("after insert", world->bytes_held(), baseline, world->size());
         for (int step = 0; step < 4; ++step) {

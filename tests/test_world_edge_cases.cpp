@@ -571,6 +571,38 @@ TYPED_TEST(WorldEdgeCaseTest, IdsNearTheTopOfTheRange) {
     this->check("huge ids after changes");
 }
 
+TYPED_TEST(WorldEdgeCaseTest, CrowdOfIdenticalBoxesOnSeveralThreadsHoldsNoPairList) {
+    // 3 000 identical boxes: 4.5 million pairs (72 MB) in one cell, more than a column may
+    // buffer while the threads share the cells, so the column is checked again straight into
+    // the sink.
+    WorldSettings settings = test_settings();
+    settings.threads = 2;
+    World<typename TestFixture::Real, TestFixture::Dim> world(settings);
+    World<typename TestFixture::Real, TestFixture::Dim> alone(test_settings());
+    const std::size_t n = 3000;
+    for (BoxId id = 0; id < n; ++id) {
+        world.insert(id, this->cube(0, 1));
+        alone.insert(id, this->cube(0, 1));
+    }
+    std::size_t count = 0;
+    std::size_t largest_chunk = 0;
+    std::vector<Pair> streamed;
+    world.detect([&](std::span<const Pair> chunk) {
+        count += chunk.size();
+        largest_chunk = std::max(largest_chunk, chunk.size());
+        streamed.insert(streamed.end(), chunk.begin(), chunk.end());
+    });
+    EXPECT_EQ(count, n * (n - 1) / 2);
+    EXPECT_LE(largest_chunk, settings.pair_chunk_size);
+    // The world keeps no copy of the pairs: at most one capped column buffer (4 MiB) and its
+    // growth, far less than the pairs themselves.
+    EXPECT_LT(world.bytes_held(), std::size_t{16} << 20);
+    EXPECT_LT(world.bytes_held(), count * sizeof(Pair) / 4);
+    std::vector<Pair> one_thread;
+    alone.detect(one_thread);
+    EXPECT_EQ(streamed, one_thread) << "the thread count changed the order";
+}
+
 TYPED_TEST(WorldEdgeCaseTest, PairSinkReceivesEveryPairInBoundedChunks) {
     WorldSettings settings = test_settings();
     settings.pair_chunk_size = 7;
