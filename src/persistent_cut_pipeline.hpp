@@ -137,6 +137,9 @@ private:
     static constexpr std::size_t kBlockPairCap = std::size_t{1} << 18;
     template <class Report>
     void check_oversized(std::span<const Box<Real, Dim>> boxes, Report& report);
+    template <class Collect>
+    void check_one_oversized(std::size_t index, std::span<const Box<Real, Dim>> boxes, Collect& collect,
+                             const bool* give_up) const;
     template <class Visit>
     void for_each_cell_covering(const Box<Real, Dim>& box, Visit&& visit) const;
     CellFloor<Real, Dim> floor_of_cell(std::size_t cell) const;
@@ -210,8 +213,7 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
 
     const auto check_start = Clock::now();
     stats.sort_moves = check_cells(boxes, report);
-    auto report_positions = [&](Position a, Position b) { report(ordered_ids_[a], ordered_ids_[b]); };
-    check_oversized(boxes, report_positions);
+    check_oversized(boxes, report);
     stats.oversized_boxes = oversized_list_.size();
     stats.check_seconds = std::chrono::duration<double>(Clock::now() - check_start).count();
 #ifdef SMB_VALIDATE
@@ -676,33 +678,73 @@ void PersistentCutPipeline<Real, Dim>::for_each_cell_covering(const Box<Real, Di
 
 /// Oversized boxes are in no cell. Each is tested against the boxes of every cell it covers,
 /// under the same lower-corner rule as the cells (so a pair is reported once even when the
-/// other box is registered in several of those cells), and against the other oversized boxes by
-/// a sweep on x.
+/// other box is registered in several of those cells), and against the oversized boxes after
+/// it in x order by a sweep on x.
 template <std::floating_point Real, int Dim>
 template <class Report>
 void PersistentCutPipeline<Real, Dim>::check_oversized(std::span<const Box<Real, Dim>> boxes, Report& report) {
-    if (oversized_list_.empty()) return;
-    const std::vector<Slot>& cells = lists_[cells_list_];
+    const std::size_t count = oversized_list_.size();
+    if (count == 0) return;
+    auto report_ids = [&](Position a, Position b) { report(ordered_ids_[a], ordered_ids_[b]); };
+    if (threads_ == 1) {
+        for (std::size_t i = 0; i < count; ++i) check_one_oversized(i, boxes, report_ids, nullptr);
+        return;
+    }
+    // As the columns: rounds of oversized boxes shared among the threads, each box's pairs
+    // buffered (up to the same cap) and handed on in order.
+    const std::size_t round = 8 * static_cast<std::size_t>(threads_);
+    if (blocks_.size() < round) blocks_.resize(round);
+    for (std::size_t first = 0; first < count; first += round) {
+        const std::size_t in_round = std::min(round, count - first);
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
+        for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(in_round); ++b) {
+            BlockOutput& block = blocks_[static_cast<std::size_t>(b)];
+            block.pairs.clear();
+            block.overflowed = false;
+            auto collect = [&block, this](Position x, Position y) {
+                if (block.pairs.size() >= kBlockPairCap) {
+                    block.overflowed = true;
+                    return;
+                }
+                const BoxId u = ordered_ids_[x];
+                const BoxId v = ordered_ids_[y];
+                block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
+            };
+            check_one_oversized(first + static_cast<std::size_t>(b), boxes, collect, &block.overflowed);
+        }
+        for (std::size_t b = 0; b < in_round; ++b) {
+            BlockOutput& block = blocks_[b];
+            if (block.overflowed) check_one_oversized(first + b, boxes, report_ids, nullptr);
+            else report.append(block.pairs);
+            if (block.pairs.capacity() > 2 * kBlockPairCap) std::vector<Pair>().swap(block.pairs);
+        }
+    }
+}
+
+/// Oversized box number `index` (in x order) against the boxes of the cells it covers and
+/// against the oversized boxes after it; stops early once *give_up is set.
+template <std::floating_point Real, int Dim>
+template <class Collect>
+void PersistentCutPipeline<Real, Dim>::check_one_oversized(std::size_t index, std::span<const Box<Real, Dim>> boxes,
+                                                          Collect& collect, const bool* give_up) const {
+    const std::vector<Position>& cells = lists_[cells_list_];
     const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
     const std::vector<Position>& sorted = oversized_list_;  // in x order (detect())
-    for (const Slot big : oversized_list_) {
-        const Box<Real, Dim>& a = boxes[big];
-        for_each_cell_covering(a, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
-            for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
-                const Box<Real, Dim>& b = boxes[cells[i]];
-                if (!overlaps(a, b)) continue;
-                bool owned = true;
-                for (int axis = 0; axis < Dim; ++axis)
-                    owned &= (a.min[axis] >= floor[axis]) | (b.min[axis] >= floor[axis]);
-                if (owned) report(big, cells[i]);
-            }
-        });
-    }
-    for (std::size_t i = 0; i < sorted.size(); ++i) {
-        const Box<Real, Dim>& a = boxes[sorted[i]];
-        for (std::size_t j = i + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
-            if (overlaps(a, boxes[sorted[j]])) report(sorted[i], sorted[j]);
+    const Position big = sorted[index];
+    const Box<Real, Dim>& a = boxes[big];
+    for_each_cell_covering(a, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
+        if (give_up != nullptr && *give_up) return;
+        for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
+            const Box<Real, Dim>& b = boxes[cells[i]];
+            if (!overlaps(a, b)) continue;
+            bool owned = true;
+            for (int axis = 0; axis < Dim; ++axis)
+                owned &= (a.min[axis] >= floor[axis]) | (b.min[axis] >= floor[axis]);
+            if (owned) collect(big, cells[i]);
         }
+    });
+    for (std::size_t j = index + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
+        if (overlaps(a, boxes[sorted[j]])) collect(big, sorted[j]);
     }
 }
 

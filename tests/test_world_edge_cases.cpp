@@ -603,6 +603,46 @@ TYPED_TEST(WorldEdgeCaseTest, CrowdOfIdenticalBoxesOnSeveralThreadsHoldsNoPairLi
     EXPECT_EQ(streamed, one_thread) << "the thread count changed the order";
 }
 
+TYPED_TEST(WorldEdgeCaseTest, HugeBoxOverMoreBoxesThanABufferHoldsOnSeveralThreads) {
+    // One box over 270 000 small ones: its pairs outgrow the 2^18 an oversized box may buffer
+    // while the threads share the oversized boxes, so it is checked again into the sink.
+    using R = typename TestFixture::Real;
+    constexpr int D = TestFixture::Dim;
+    const std::size_t n = 270000;
+    const std::size_t side = D == 2 ? 520 : 65;  // side^Dim >= n grid places
+    std::vector<typename TestFixture::BoxT> boxes;
+    for (std::size_t i = 0; i < n; ++i) {
+        typename TestFixture::BoxT box;
+        std::size_t rest = i;
+        for (int k = 0; k < D; ++k) {
+            box.min[k] = static_cast<R>(2 * (rest % side));
+            box.max[k] = box.min[k] + R{1};
+            rest /= side;
+        }
+        boxes.push_back(box);
+    }
+    typename TestFixture::BoxT huge;
+    for (int k = 0; k < D; ++k) {
+        huge.min[k] = -1;
+        huge.max[k] = static_cast<R>(2 * side + 1);
+    }
+    boxes.push_back(huge);
+    WorldSettings settings = test_settings();
+    settings.threads = 2;
+    World<R, D> world(settings);
+    World<R, D> alone(test_settings());
+    world.assign(boxes);
+    alone.assign(boxes);
+    std::vector<Pair> threaded, single;
+    world.detect(threaded);
+    alone.detect(single);
+    EXPECT_EQ(threaded.size(), n);  // the small boxes are apart: every pair has the huge box
+    EXPECT_EQ(threaded, single) << "the thread count changed the pairs or their order";
+    if (kTestPipeline == Pipeline::persistent_cuts) {  // no copy of the pairs is kept
+        EXPECT_LT(world.bytes_held(), n * (sizeof(typename TestFixture::BoxT) + 256));
+    }
+}
+
 TYPED_TEST(WorldEdgeCaseTest, PairSinkReceivesEveryPairInBoundedChunks) {
     WorldSettings settings = test_settings();
     settings.pair_chunk_size = 7;
