@@ -110,7 +110,7 @@ private:
     void plan_segments(std::size_t n, const WorldSettings& settings);
     void plan_threads(const WorldSettings& settings);
     double run_levels(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
-    void order_by_home_cell();
+    void renumber_in_cell_order(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
     void gather_in_order(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
     std::span<const Position> identity_(std::size_t n) {
         if (identity_positions_.size() != n) {
@@ -195,16 +195,13 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
     plan_segments(n, settings);
     plan_threads(settings);
     // A cold order (first detection, new cut counts, or boxes that jumped far since the last
-    // step) scatters each cell's boxes over the ordered array: one pass of the levels then
-    // only serves to put the boxes in cell order, and the second runs on that order.
+    // step) scatters each cell's boxes over the ordered array: the boxes are then renumbered in
+    // cell order before the check, so that it reads them sequentially.
     const bool cold = cold_ || cuts_.segments() != segments_before;
 
     const auto start = Clock::now();
-    double cutting = run_levels(store_boxes, store.ids());
-    if (cold) {
-        order_by_home_cell();
-        cutting += run_levels(store_boxes, store.ids());
-    }
+    const double cutting = run_levels(store_boxes, store.ids());
+    if (cold) renumber_in_cell_order(store_boxes, store.ids());
     const std::span<const Box<Real, Dim>> boxes(ordered_);
     const double regrouping = std::chrono::duration<double>(Clock::now() - start).count();
     stats.sort_seconds = cutting;
@@ -262,12 +259,15 @@ double PersistentCutPipeline<Real, Dim>::run_levels(std::span<const Box<Real, Di
     return cutting;
 }
 
-/// order_ becomes the cells' home boxes (those whose lower corner lies in the cell), cell after
-/// cell, then the oversized boxes: the order a detection leaves behind, without its check.
+/// Renumbers the boxes in the order of their home cells (the cell holding their lower corner),
+/// oversized boxes last: order_, the ordered copies, the cell lists and the oversized list
+/// follow. The order a detection leaves behind, without running its levels again.
 template <std::floating_point Real, int Dim>
-void PersistentCutPipeline<Real, Dim>::order_by_home_cell() {
-    const std::vector<Position>& cells = lists_[cells_list_];
+void PersistentCutPipeline<Real, Dim>::renumber_in_cell_order(std::span<const Box<Real, Dim>> store_boxes,
+                                                              std::span<const BoxId> store_ids) {
+    std::vector<Position>& cells = lists_[cells_list_];
     const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    const std::size_t n = order_.size();
     next_order_.clear();
     for (std::size_t cell = 0; cell + 1 < cell_begin.size(); ++cell) {
         if (cell_begin[cell] == cell_begin[cell + 1]) continue;
@@ -276,12 +276,26 @@ void PersistentCutPipeline<Real, Dim>::order_by_home_cell() {
             const Box<Real, Dim>& box = ordered_[cells[i]];
             bool home = true;
             for (int k = 0; k < Dim; ++k) home &= box.min[k] >= floor[k];
-            if (home) next_order_.push_back(order_[cells[i]]);
+            if (home) next_order_.push_back(cells[i]);
         }
     }
-    for (const Position position : oversized_list_) next_order_.push_back(order_[position]);
-    SMB_ASSERT(next_order_.size() == order_.size(), "every box has exactly one home cell");
+    next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
+    SMB_ASSERT(next_order_.size() == n, "every box has exactly one home cell");
+    // ranges_ is free once the levels are done: it holds the new number of each old one.
+    std::vector<std::uint32_t>& renumbered = ranges_;
+    renumbered.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        renumbered[next_order_[i]] = static_cast<Position>(i);
+        next_order_[i] = order_[next_order_[i]];
+    }
     order_.swap(next_order_);
+    gather_in_order(store_boxes, store_ids);
+    const auto entries = static_cast<std::ptrdiff_t>(cells.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::ptrdiff_t i = 0; i < entries; ++i) cells[i] = renumbered[cells[i]];
+    for (Position& position : oversized_list_) position = renumbered[position];
+    oversized_.assign(n, 0);
+    for (const Position position : oversized_list_) oversized_[position] = kPublished;
 }
 
 /// Threads: WorldSettings::threads, 0 for as many as OpenMP offers; one without OpenMP.
