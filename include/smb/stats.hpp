@@ -10,13 +10,15 @@ struct DetectStats {
     std::size_t pairs = 0;            ///< overlapping pairs reported
     std::size_t cells = 0;            ///< cells made by the axial cuts (including empty ones)
     std::size_t oversized_boxes = 0;  ///< boxes spanning more than two segments on some axis
-    std::size_t sort_moves = 0;       ///< items moved by the diminishing increment sorts
+    std::size_t sort_moves = 0;       ///< items moved by the insertion/diminishing increment sorts
     std::size_t bytes_held = 0;       ///< heap bytes the world holds after the call
 
     double update_seconds = 0;         ///< applying insertions and removals to the lists
-    double sort_seconds = 0;           ///< DIS on every level
+    /// Sorting: DIS on every level (Pipeline::paper_lists); selecting the quantiles of the
+    /// groups cut again this step (Pipeline::persistent_cuts, zero in most steps).
+    double sort_seconds = 0;
     double cut_regroup_seconds = 0;    ///< axial cuts, singular regrouping, per-cell lists
-    double check_seconds = 0;          ///< cell checks, mask, oversized sweep, reporting
+    double check_seconds = 0;          ///< cell checks (with their sorts), oversized boxes, reporting
     double total_seconds = 0;          ///< the whole call
 };
 
