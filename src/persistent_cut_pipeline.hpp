@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <ranges>
 #include <span>
 #include <vector>
 
@@ -62,7 +63,7 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes = (order_.capacity() + next_order_.capacity()) * sizeof(Slot);
-        bytes += ordered_.capacity() * sizeof(Box<Real, Dim>) + ordered_ids_.capacity() * sizeof(BoxId) + identity_positions_.capacity() * sizeof(Position);
+        bytes += ordered_.capacity() * sizeof(Box<Real, Dim>) + ordered_ids_.capacity() * sizeof(BoxId);
         for (const auto& list : lists_) bytes += list.capacity() * sizeof(Slot);
         for (const auto& begin : begin_) bytes += begin.capacity() * sizeof(std::uint32_t);
         bytes += ranges_.capacity() * sizeof(std::uint32_t);
@@ -112,24 +113,20 @@ private:
     double run_levels(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
     void renumber_in_cell_order(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
     void gather_in_order(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
-    std::span<const Position> identity_(std::size_t n) {
-        if (identity_positions_.size() != n) {
-            identity_positions_.resize(n);
-            for (std::size_t i = 0; i < n; ++i) identity_positions_[i] = static_cast<Position>(i);
-        }
-        return identity_positions_;
-    }
     double regroup_level(int level, std::span<const Position> in, std::span<const std::uint32_t> in_begin,
                          std::span<const Box<Real, Dim>> boxes, std::vector<Position>& out,
                          std::vector<std::uint32_t>& out_begin);
-    std::uint32_t locate_group(int level, std::size_t group, std::span<const Position> entries,
+    template <class Entries>
+    std::uint32_t locate_group(int level, std::size_t group, const Entries& entries,
                                std::span<const Box<Real, Dim>> boxes, std::uint32_t* ranges,
                                std::uint32_t* count, WorkerScratch& worker);
-    double regroup_first_level(std::span<const Position> in, std::span<const Box<Real, Dim>> boxes,
+    double regroup_first_level(std::size_t n, std::span<const Box<Real, Dim>> boxes,
                                std::vector<Position>& out, std::vector<std::uint32_t>& out_begin);
     void publish_marks();
     template <class Report>
     std::size_t check_cells(std::span<const Box<Real, Dim>> boxes, Report& report);
+    template <class Report, class Work>
+    std::size_t in_ordered_rounds(std::size_t count, Report& report, std::vector<Position>& home, Work&& work);
     template <class Collect>
     std::size_t check_column(std::size_t column, std::span<const Box<Real, Dim>> boxes, CellSweep<Real, Dim>& sweep,
                              Collect& collect, std::vector<Position>& home, const bool* give_up);
@@ -149,7 +146,6 @@ private:
     std::vector<Position> next_order_;   // positions of the home boxes, cell by cell
     std::vector<Box<Real, Dim>> ordered_;   // the boxes in order_'s order, copied each step
     std::vector<BoxId> ordered_ids_;        // and their ids
-    std::vector<Position> identity_positions_;
     std::size_t listed_ = 0;        // slots [0, listed_) are in order_; later ones are new
     CutTree<Real, Dim> cuts_;
     std::array<std::vector<Slot>, 2> lists_;             // entries of a level, grouped by segment
@@ -243,7 +239,7 @@ double PersistentCutPipeline<Real, Dim>::run_levels(std::span<const Box<Real, Di
     // sequentially, where reading them by slot would miss the cache on nearly every box.
     gather_in_order(store_boxes, store_ids);
     const std::span<const Box<Real, Dim>> boxes(ordered_);
-    double cutting = regroup_first_level(identity_(n), boxes, lists_[0], begin_[0]);
+    double cutting = regroup_first_level(n, boxes, lists_[0], begin_[0]);
     cells_list_ = 0;
     for (int level = 1; level < Dim; ++level) {
         const int source = (level - 1) % 2;
@@ -344,8 +340,9 @@ void PersistentCutPipeline<Real, Dim>::gather_in_order(std::span<const Box<Real,
 /// worker.marks (published as oversized once the group's planes are final) and not counted.
 /// Returns the fullest segment's count.
 template <std::floating_point Real, int Dim>
+template <class Entries>
 std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::size_t group,
-                                                             std::span<const Position> entries,
+                                                             const Entries& entries,
                                                              std::span<const Box<Real, Dim>> boxes,
                                                              std::uint32_t* ranges, std::uint32_t* count,
                                                              WorkerScratch& worker) {
@@ -397,12 +394,11 @@ void PersistentCutPipeline<Real, Dim>::publish_marks() {
 /// locates and counts its share, the index array is summed, and each scatters its share to the
 /// offsets that keep the counting sort stable.
 template <std::floating_point Real, int Dim>
-double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::span<const Position> in,
+double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::size_t n,
                                                              std::span<const Box<Real, Dim>> boxes,
                                                              std::vector<Position>& out,
                                                              std::vector<std::uint32_t>& out_begin) {
     const std::uint32_t k = cuts_.segments();
-    const std::size_t n = in.size();
     const auto shares = static_cast<std::size_t>(threads_);
     ranges_.resize(n);
     auto share_begin = [&](std::size_t t) { return n * t / shares; };
@@ -415,7 +411,8 @@ double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::span<const Pos
             worker.marks.clear();
             const std::size_t first = share_begin(static_cast<std::size_t>(t));
             const std::size_t last = share_begin(static_cast<std::size_t>(t) + 1);
-            locate_group(0, 0, in.subspan(first, last - first), boxes, ranges_.data() + first,
+            locate_group(0, 0, std::views::iota(static_cast<Position>(first), static_cast<Position>(last)), boxes,
+                         ranges_.data() + first,
                          worker.count.data(), worker);
         }
         for (std::uint32_t s = 0; s < k; ++s) {
@@ -431,7 +428,7 @@ double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::span<const Pos
         const auto cut_start = Clock::now();
         std::vector<Real>& keys = workers_[0].keys;
         keys.resize(n);
-        for (std::size_t i = 0; i < n; ++i) keys[i] = boxes[in[i]].min[axis_of_level(0)];
+        for (std::size_t i = 0; i < n; ++i) keys[i] = boxes[i].min[axis_of_level(0)];
         cuts_.cut(0, 0, keys);
         const std::uint32_t balanced = locate_shares();
         std::size_t registrations = 0;
@@ -463,8 +460,8 @@ double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::span<const Pos
             const std::uint32_t lo = lo_of(range);
             const std::uint32_t hi = hi_of(range);
             if (lo > hi) continue;
-            target[cursor[lo]++] = in[i];
-            if (hi != lo) target[cursor[hi]++] = in[i];
+            target[cursor[lo]++] = static_cast<Position>(i);
+            if (hi != lo) target[cursor[hi]++] = static_cast<Position>(i);
         }
     }
     return cutting;
@@ -579,61 +576,68 @@ template <std::floating_point Real, int Dim>
 template <class Report>
 std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Real, Dim>> boxes,
                                                           Report& report) {
-    const std::size_t columns = cuts_.groups(Dim - 1);
     next_order_.clear();
     next_order_.reserve(boxes.size());
-    std::size_t moves = 0;
-    // One thread: pairs go straight to the caller, nothing is held.
+    const std::size_t moves = in_ordered_rounds(
+        cuts_.groups(Dim - 1), report, next_order_,
+        [&](std::size_t column, auto& collect, std::vector<Position>& home, const bool* give_up) {
+            return check_column(column, boxes, workers_[static_cast<std::size_t>(this_thread())].sweep, collect,
+                                home, give_up);
+        });
+    next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
+    SMB_ASSERT(next_order_.size() == boxes.size(), "every box has exactly one home cell");
+    return moves;
+}
+
+/// Runs work(item, collect, home, give_up) for the items 0..count-1 (columns, oversized boxes)
+/// so that their pairs reach `report`, and their home boxes `home`, in item order whatever the
+/// number of threads. One thread: straight through. Several: rounds of items shared among the
+/// threads, each item's pairs buffered and handed on in order. An item whose pairs outgrow
+/// its buffer's cap (a crowd of identical boxes: billions of pairs) gives up and is run again
+/// alone when its turn comes, straight into the caller's sink, so memory stays bounded.
+template <std::floating_point Real, int Dim>
+template <class Report, class Work>
+std::size_t PersistentCutPipeline<Real, Dim>::in_ordered_rounds(std::size_t count, Report& report,
+                                                                std::vector<Position>& home, Work&& work) {
     auto report_ids = [&](Position a, Position b) { report(ordered_ids_[a], ordered_ids_[b]); };
+    std::size_t moves = 0;
     if (threads_ == 1) {
-        CellSweep<Real, Dim>& sweep = workers_[0].sweep;
-        for (std::size_t column = 0; column < columns; ++column)
-            moves += check_column(column, boxes, sweep, report_ids, next_order_, nullptr);
-        next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
-        SMB_ASSERT(next_order_.size() == boxes.size(), "every box has exactly one home cell");
+        for (std::size_t item = 0; item < count; ++item) moves += work(item, report_ids, home, nullptr);
         return moves;
     }
-    // Several: a round of columns is checked in parallel into per-column buffers, which are then
-    // handed on in column order. A column whose pairs outgrow its buffer's cap (a crowd of
-    // identical boxes: billions of pairs) gives up and is checked again alone when its turn
-    // comes, straight into the caller's sink, so that memory stays bounded by the cap.
     const std::size_t round = 8 * static_cast<std::size_t>(threads_);
     if (blocks_.size() < round) blocks_.resize(round);
-    for (std::size_t first_column = 0; first_column < columns; first_column += round) {
-        const std::size_t in_round = std::min(round, columns - first_column);
+    for (std::size_t first = 0; first < count; first += round) {
+        const std::size_t in_round = std::min(round, count - first);
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
         for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(in_round); ++b) {
             BlockOutput& block = blocks_[static_cast<std::size_t>(b)];
             block.pairs.clear();
             block.home.clear();
             block.overflowed = false;
-            auto collect = [&block, this](Position a, Position c) {
+            auto collect = [&block, this](Position x, Position y) {
                 if (block.pairs.size() >= kBlockPairCap) {
                     block.overflowed = true;
                     return;
                 }
-                const BoxId x = ordered_ids_[a];
-                const BoxId y = ordered_ids_[c];
-                block.pairs.push_back(x < y ? Pair{x, y} : Pair{y, x});
+                const BoxId u = ordered_ids_[x];
+                const BoxId v = ordered_ids_[y];
+                block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
             };
-            CellSweep<Real, Dim>& sweep = workers_[static_cast<std::size_t>(this_thread())].sweep;
-            block.moves = check_column(first_column + static_cast<std::size_t>(b), boxes, sweep, collect,
-                                       block.home, &block.overflowed);
+            block.moves = work(first + static_cast<std::size_t>(b), collect, block.home, &block.overflowed);
         }
         for (std::size_t b = 0; b < in_round; ++b) {
             BlockOutput& block = blocks_[b];
             if (block.overflowed) {
-                moves += check_column(first_column + b, boxes, workers_[0].sweep, report_ids, next_order_, nullptr);
+                moves += work(first + b, report_ids, home, nullptr);
             } else {
                 report.append(block.pairs);
-                next_order_.insert(next_order_.end(), block.home.begin(), block.home.end());
+                home.insert(home.end(), block.home.begin(), block.home.end());
                 moves += block.moves;
             }
             if (block.pairs.capacity() > 2 * kBlockPairCap) std::vector<Pair>().swap(block.pairs);
         }
     }
-    next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
-    SMB_ASSERT(next_order_.size() == boxes.size(), "every box has exactly one home cell");
     return moves;
 }
 
@@ -697,42 +701,12 @@ void PersistentCutPipeline<Real, Dim>::for_each_cell_covering(const Box<Real, Di
 template <std::floating_point Real, int Dim>
 template <class Report>
 void PersistentCutPipeline<Real, Dim>::check_oversized(std::span<const Box<Real, Dim>> boxes, Report& report) {
-    const std::size_t count = oversized_list_.size();
-    if (count == 0) return;
-    auto report_ids = [&](Position a, Position b) { report(ordered_ids_[a], ordered_ids_[b]); };
-    if (threads_ == 1) {
-        for (std::size_t i = 0; i < count; ++i) check_one_oversized(i, boxes, report_ids, nullptr);
-        return;
-    }
-    // As the columns: rounds of oversized boxes shared among the threads, each box's pairs
-    // buffered (up to the same cap) and handed on in order.
-    const std::size_t round = 8 * static_cast<std::size_t>(threads_);
-    if (blocks_.size() < round) blocks_.resize(round);
-    for (std::size_t first = 0; first < count; first += round) {
-        const std::size_t in_round = std::min(round, count - first);
-#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
-        for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(in_round); ++b) {
-            BlockOutput& block = blocks_[static_cast<std::size_t>(b)];
-            block.pairs.clear();
-            block.overflowed = false;
-            auto collect = [&block, this](Position x, Position y) {
-                if (block.pairs.size() >= kBlockPairCap) {
-                    block.overflowed = true;
-                    return;
-                }
-                const BoxId u = ordered_ids_[x];
-                const BoxId v = ordered_ids_[y];
-                block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
-            };
-            check_one_oversized(first + static_cast<std::size_t>(b), boxes, collect, &block.overflowed);
-        }
-        for (std::size_t b = 0; b < in_round; ++b) {
-            BlockOutput& block = blocks_[b];
-            if (block.overflowed) check_one_oversized(first + b, boxes, report_ids, nullptr);
-            else report.append(block.pairs);
-            if (block.pairs.capacity() > 2 * kBlockPairCap) std::vector<Pair>().swap(block.pairs);
-        }
-    }
+    std::vector<Position> no_home;  // oversized boxes have no home cell
+    in_ordered_rounds(oversized_list_.size(), report, no_home,
+                      [&](std::size_t index, auto& collect, std::vector<Position>&, const bool* give_up) {
+                          check_one_oversized(index, boxes, collect, give_up);
+                          return std::size_t{0};
+                      });
 }
 
 /// Oversized box number `index` (in x order) against the boxes of the cells it covers and
