@@ -1,9 +1,9 @@
 #pragma once
-// The cell check of the persistent-cut pipeline: the boxes registered in one cell are copied out
-// under local numbers (the global-local map of the paper, here a copy of the boxes themselves so
-// that the check reads one small contiguous array), sorted on x by DIS with one increment (the
-// list arrives almost sorted: it follows last step's order), and swept on x with direct tests
-// on the other axes.
+// The cell check of the persistent-cut pipeline: the boxes registered in one cell get local
+// numbers (the global-local map of the paper), are sorted on x by DIS with one increment (the
+// list arrives almost sorted: it follows last step's order), copied out in that order one array
+// per coordinate, so that the check reads small contiguous arrays, and swept on x with direct
+// tests on the other axes.
 //
 // A pair shared by several cells is reported only by the cell that holds the lower corner of the
 // two boxes' intersection, p[k] = max(a.min[k], b.min[k]). This replaces the paper's mask array:
@@ -30,13 +30,6 @@
 
 namespace smb::detail {
 
-template <std::floating_point Real, int Dim>
-struct CellBox {
-    std::array<Real, Dim> min;
-    std::array<Real, Dim> max;
-    Slot slot;
-    std::uint32_t inside;  // bit k: min[k] >= the cell's lower plane on axis k
-};
 
 /// Lower planes of a cell on every axis (-inf where the cell is first on that axis).
 template <std::floating_point Real, int Dim>
@@ -69,31 +62,19 @@ public:
     std::size_t check(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
                       std::span<const BoxId> ids, const CellFloor<Real, Dim>& floor, Report& report, std::vector<std::uint32_t>& home) {
         const std::size_t m = entries.size();
-        local_.resize(m);
         order_.resize(m);
-        CellBox<Real, Dim>* local = local_.data();
         std::uint64_t* order = order_.data();
-        for (std::size_t i = 0; i < m; ++i) {
-            const std::uint32_t position = entries[i];
-            const Box<Real, Dim>& box = boxes[position];
-            CellBox<Real, Dim>& out = local[i];
-            out.min = box.min;
-            out.max = box.max;
-            out.slot = position;
-            std::uint32_t inside = 0;
-            for (int k = 0; k < Dim; ++k) inside |= (box.min[k] >= floor[k] ? 1U : 0U) << k;
-            out.inside = inside;
-            order[i] = (std::uint64_t{monotone_key(box.min[0])} << 32) | i;
-        }
+        for (std::size_t i = 0; i < m; ++i)
+            order[i] = (std::uint64_t{monotone_key(boxes[entries[i]].min[0])} << 32) | i;
         const std::size_t moves = insertion_sort(order, m);
-        order_equal_keys(order, m, ids);
-        lay_out_sorted(order, m);
+        order_equal_keys(order, m, entries, boxes, ids);
+        lay_out_sorted(order, m, entries, boxes, floor);
         sweep(m, report, home);
         return moves;
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        std::size_t bytes = local_.capacity() * sizeof(CellBox<Real, Dim>) + order_.capacity() * sizeof(std::uint64_t);
+        std::size_t bytes = order_.capacity() * sizeof(std::uint64_t);
         for (const auto& column : sorted_.min) bytes += column.capacity() * sizeof(Real);
         for (const auto& column : sorted_.max) bytes += column.capacity() * sizeof(Real);
         bytes += sorted_.inside.capacity() * sizeof(Mask) + sorted_.key.capacity() * sizeof(std::uint32_t) +
@@ -119,7 +100,8 @@ private:
         std::vector<std::uint32_t> position;
     };
 
-    void lay_out_sorted(const std::uint64_t* order, std::size_t m) {
+    void lay_out_sorted(const std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
+                        std::span<const Box<Real, Dim>> boxes, const CellFloor<Real, Dim>& floor) {
         const std::size_t padded = m + kLanes;
         for (int k = 0; k < Dim; ++k) {
             sorted_.min[k].resize(padded);
@@ -128,16 +110,18 @@ private:
         sorted_.inside.resize(padded);
         sorted_.key.resize(padded);
         sorted_.position.resize(padded);
-        const CellBox<Real, Dim>* local = local_.data();
         for (std::size_t r = 0; r < m; ++r) {
-            const CellBox<Real, Dim>& box = local[order[r] & 0xFFFFFFFFU];
+            const std::uint32_t position = entries[order[r] & 0xFFFFFFFFU];
+            const Box<Real, Dim>& box = boxes[position];
+            std::uint32_t inside = 0;
             for (int k = 0; k < Dim; ++k) {
                 sorted_.min[k][r] = box.min[k];
                 sorted_.max[k][r] = box.max[k];
+                inside |= (box.min[k] >= floor[k] ? 1U : 0U) << k;
             }
-            sorted_.inside[r] = static_cast<Mask>(box.inside);
+            sorted_.inside[r] = static_cast<Mask>(inside);
             sorted_.key[r] = static_cast<std::uint32_t>(order[r] >> 32);
-            sorted_.position[r] = box.slot;
+            sorted_.position[r] = position;
         }
         for (std::size_t r = m; r < padded; ++r) {
             for (int k = 0; k < Dim; ++k) {
@@ -212,17 +196,17 @@ private:
     // them by exact coordinate and id makes the reported order a function of the boxes alone,
     // so that detecting twice without changes reports the same list. Such runs are rare outside
     // scenes of equal coordinates, where they are short.
-    void order_equal_keys(std::uint64_t* order, std::size_t m, std::span<const BoxId> ids) const {
-        const CellBox<Real, Dim>* local = local_.data();
+    static void order_equal_keys(std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
+                                 std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> ids) {
         std::size_t run = 0;
         for (std::size_t i = 1; i <= m; ++i) {
             if (i < m && (order[i] >> 32) == (order[run] >> 32)) continue;
             if (i - run > 1) {
                 std::sort(order + run, order + i, [&](std::uint64_t x, std::uint64_t y) {
-                    const CellBox<Real, Dim>& a = local[x & 0xFFFFFFFFU];
-                    const CellBox<Real, Dim>& b = local[y & 0xFFFFFFFFU];
-                    if (a.min[0] != b.min[0]) return a.min[0] < b.min[0];
-                    return ids[a.slot] < ids[b.slot];
+                    const std::uint32_t a = entries[x & 0xFFFFFFFFU];
+                    const std::uint32_t b = entries[y & 0xFFFFFFFFU];
+                    if (boxes[a].min[0] != boxes[b].min[0]) return boxes[a].min[0] < boxes[b].min[0];
+                    return ids[a] < ids[b];
                 });
             }
             run = i;
@@ -247,7 +231,6 @@ private:
         return moves;
     }
 
-    std::vector<CellBox<Real, Dim>> local_;
     std::vector<std::uint64_t> order_;
     SortedColumns sorted_;
 };
