@@ -30,19 +30,22 @@ using PairSink = std::function<void(std::span<const Pair>)>;
 ///
 /// Use: insert, update and remove boxes freely between detections; detect() then reports
 /// every pair of boxes that overlap (closed convention: touching boxes overlap, see
-/// smb::overlaps), each pair exactly once, with Pair::a < Pair::b. The world keeps its sorted
-/// per-axis lists from one detection to the next, so a detection after small motions costs
-/// about linear time in the number of boxes.
+/// smb::overlaps), each pair exactly once, with Pair::a < Pair::b. The world keeps its axial
+/// cuts (and, with Pipeline::paper_lists, its sorted per-axis lists) from one detection to the
+/// next, so a detection after small motions costs linear time in the number of boxes.
 ///
 /// Errors: every mutating call validates all its input first; on bad input (a box with NaN,
 /// infinity or min > max; an unknown id; an id inserted twice) it throws a subclass of
 /// smb::Error and leaves the world exactly as it was.
 ///
-/// Determinism: the same sequence of calls gives the same pairs in the same order. The order
-/// of pairs within one detection is unspecified; sort_pairs() gives (a, b) order.
+/// Determinism: the same sequence of calls gives the same pairs in the same order, whatever
+/// WorldSettings::threads. The order of pairs within one detection is otherwise unspecified;
+/// sort_pairs() gives (a, b) order.
 ///
 /// Thread safety: a World is not synchronised. Distinct worlds may be used from distinct
 /// threads; one world must not be used from two threads at once, not even for detect().
+/// detect() itself may use WorldSettings::threads threads; the sink is always called from the
+/// thread that called detect().
 template <std::floating_point Real, int Dim>
 class World {
 public:
