@@ -165,7 +165,7 @@ private:
                 for (std::size_t j = i + 1; key[j] <= stop; ++j) {
                     bool hit = (inside[j] | own) == static_cast<Mask>(kAllInside);
                     for (int k = 0; k < Dim; ++k)
-                        hit &= (sorted_.min[k][j] <= high[k]) & (sorted_.max[k][j] >= low[k]);
+                        hit = hit && sorted_.min[k][j] <= high[k] && sorted_.max[k][j] >= low[k];
                     if (hit) report(position[i], position[j]);
                 }
                 continue;

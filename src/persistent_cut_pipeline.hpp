@@ -21,7 +21,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <ranges>
 #include <span>
 #include <vector>
 
@@ -90,6 +89,15 @@ private:
 
     /// Entries of the levels and cells are positions in order_ (and in ordered_), not slots.
     using Position = std::uint32_t;
+
+    /// Positions first, first + 1, ...: the entries of level 0, which reads the ordered boxes in
+    /// order (a std::views::iota would do, but clang 14 cannot compile libstdc++ 12's).
+    struct PositionRange {
+        Position first;
+        Position count;
+        [[nodiscard]] std::size_t size() const noexcept { return count; }
+        Position operator[](std::size_t i) const noexcept { return first + static_cast<Position>(i); }
+    };
 
     /// What one thread needs for itself while groups or cells are shared out.
     struct WorkerScratch {
@@ -411,8 +419,8 @@ double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::size_t n,
             worker.marks.clear();
             const std::size_t first = share_begin(static_cast<std::size_t>(t));
             const std::size_t last = share_begin(static_cast<std::size_t>(t) + 1);
-            locate_group(0, 0, std::views::iota(static_cast<Position>(first), static_cast<Position>(last)), boxes,
-                         ranges_.data() + first,
+            locate_group(0, 0, PositionRange{static_cast<Position>(first), static_cast<Position>(last - first)},
+                         boxes, ranges_.data() + first,
                          worker.count.data(), worker);
         }
         for (std::uint32_t s = 0; s < k; ++s) {
@@ -727,7 +735,7 @@ void PersistentCutPipeline<Real, Dim>::check_one_oversized(std::size_t index, st
             if (!overlaps(a, b)) continue;
             bool owned = true;
             for (int axis = 0; axis < Dim; ++axis)
-                owned &= (a.min[axis] >= floor[axis]) | (b.min[axis] >= floor[axis]);
+                owned = owned && (a.min[axis] >= floor[axis] || b.min[axis] >= floor[axis]);
             if (owned) collect(big, cells[i]);
         }
     });
