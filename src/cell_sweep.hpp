@@ -163,10 +163,13 @@ private:
                 // Two doubles fill an SSE register: lanes of four cost more than they save
                 // (measured, docs/performance.md), so doubles take one candidate at a time.
                 for (std::size_t j = i + 1; key[j] <= stop; ++j) {
-                    bool hit = (inside[j] | own) == static_cast<Mask>(kAllInside);
-                    for (int k = 0; k < Dim; ++k)
-                        hit = hit && sorted_.min[k][j] <= high[k] && sorted_.max[k][j] >= low[k];
-                    if (hit) report(position[i], position[j]);
+                    // Bitwise on purpose: one branch per candidate, not one per comparison.
+                    unsigned hit = (inside[j] | own) == static_cast<Mask>(kAllInside) ? 1U : 0U;
+                    for (int k = 0; k < Dim; ++k) {
+                        hit &= static_cast<unsigned>(sorted_.min[k][j] <= high[k]) &
+                               static_cast<unsigned>(sorted_.max[k][j] >= low[k]);
+                    }
+                    if (hit != 0) report(position[i], position[j]);
                 }
                 continue;
             }
