@@ -139,14 +139,10 @@ public:
         limit_[level][group] = static_cast<std::uint32_t>(std::min(band, 4.0e9));
     }
 
-    /// Lower and upper plane of segment `segment` of group `group` (infinite at the ends).
+    /// Lower plane of segment `segment` of group `group` (-inf for the first).
     [[nodiscard]] Real lower(int level, std::size_t group, std::uint32_t segment) const noexcept {
         return segment == 0 ? -std::numeric_limits<Real>::infinity()
                             : cuts_[level][group * (k_ - 1) + segment - 1];
-    }
-    [[nodiscard]] Real upper(int level, std::size_t group, std::uint32_t segment) const noexcept {
-        return segment + 1 == k_ ? std::numeric_limits<Real>::infinity()
-                                 : cuts_[level][group * (k_ - 1) + segment];
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {

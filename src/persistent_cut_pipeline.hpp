@@ -52,8 +52,6 @@ public:
         listed_ = write;
     }
 
-    void clear() { *this = PersistentCutPipeline(); }
-
     /// Reports every overlapping pair once: report.append(pairs in a < b order) for runs,
     /// report(id_a, id_b) for single pairs.
     template <class Report>
