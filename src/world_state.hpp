@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -122,6 +123,8 @@ public:
     }
 
 private:
+    static constexpr std::size_t kMaxThreads = 1024;
+
     static WorldSettings validated(const WorldSettings& settings) {
         if (settings.target_cell_population == 0)
             throw ArgumentError("WorldSettings::target_cell_population must be at least 1");
@@ -129,6 +132,9 @@ private:
             throw ArgumentError("WorldSettings::pair_chunk_size must be at least 1");
         if (settings.pipeline != Pipeline::persistent_cuts && settings.pipeline != Pipeline::paper_lists)
             throw ArgumentError("WorldSettings::pipeline is not a known Pipeline");
+        if (settings.threads > kMaxThreads)
+            throw ArgumentError("WorldSettings::threads must be at most " + std::to_string(kMaxThreads) +
+                                " (0: as many as OpenMP offers), not " + std::to_string(settings.threads));
         return settings;
     }
 

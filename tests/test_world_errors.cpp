@@ -399,5 +399,16 @@ TEST(SettingsErrors, ZeroCellPopulationOrChunkSizeIsRejected) {
     EXPECT_THROW(World3f{no_chunk}, ArgumentError);
 }
 
+TEST(SettingsErrors, TooManyThreadsOrAnUnknownPipelineIsRejected) {
+    WorldSettings crowd;
+    crowd.threads = 5000;
+    EXPECT_THROW(World3d{crowd}, ArgumentError);
+    crowd.threads = 1024;
+    EXPECT_NO_THROW(World3d{crowd});
+    WorldSettings unknown;
+    unknown.pipeline = static_cast<Pipeline>(7);
+    EXPECT_THROW(World2f{unknown}, ArgumentError);
+}
+
 }  // namespace
 }  // namespace smb::test

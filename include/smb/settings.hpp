@@ -37,7 +37,8 @@ struct WorldSettings {
     /// alone, 0 takes as many as OpenMP offers (OMP_NUM_THREADS, else the cores). The pairs and
     /// their order are the same whatever the number. One by default, so that a simulation that
     /// already runs a thread or a process per core is not oversubscribed. Without OpenMP at
-    /// build time (smb::openmp_enabled() is false), every value means one.
+    /// build time (smb::openmp_enabled() is false), every value means one. At most 1024: a
+    /// larger value is refused with smb::ArgumentError.
     std::size_t threads = 1;
 };
 
