@@ -8,18 +8,14 @@
 #include <span>
 #include <sstream>
 #include <string>
-#include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
+#include "id_index.hpp"
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
 #include "smb/pair.hpp"
 
 namespace smb::detail {
-
-using Slot = std::uint32_t;
-inline constexpr Slot kNoSlot = ~Slot{0};
 
 template <std::floating_point Real, int Dim>
 std::string describe_invalid_box(BoxId id, const Box<Real, Dim>& box) {
@@ -58,40 +54,42 @@ public:
     [[nodiscard]] std::span<const BoxId> ids() const noexcept { return ids_; }
 
     [[nodiscard]] Slot slot_of(BoxId id) const {
-        const auto it = slot_of_id_.find(id);
-        if (it == slot_of_id_.end()) throw UnknownIdError(unknown_message(id));
-        return it->second;
+        const Slot slot = slot_of_id_.find(id);
+        if (slot == kNoSlot) throw UnknownIdError(unknown_message(id));
+        return slot;
     }
 
     void insert(std::span<const BoxId> ids, std::span<const box_type> boxes) {
         require_same_length(ids.size(), boxes.size(), "insert");
         validate_boxes(ids, boxes);
-        if (ids.size() == 1) {
-            if (contains(ids[0])) throw DuplicateIdError(duplicate_message(ids[0]));
-        } else {
-            std::unordered_set<BoxId> batch;
-            batch.reserve(ids.size());
-            for (const BoxId id : ids) {
-                if (contains(id) || !batch.insert(id).second)
-                    throw DuplicateIdError(duplicate_message(id));
+        reserve_for(ids.size());
+        // The index itself finds repeats, within the batch as well as against the world; the
+        // ids this batch added are taken out again before the error leaves.
+        const auto first = static_cast<Slot>(boxes_.size());
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+            if (!slot_of_id_.insert(ids[i], first + static_cast<Slot>(i))) {
+                for (std::size_t j = 0; j < i; ++j) slot_of_id_.erase(ids[j]);
+                throw DuplicateIdError(duplicate_message(ids[i]));
             }
         }
-        reserve_for(ids.size());
-        for (std::size_t i = 0; i < ids.size(); ++i) append(ids[i], boxes[i]);
+        boxes_.insert(boxes_.end(), boxes.begin(), boxes.end());
+        ids_.insert(ids_.end(), ids.begin(), ids.end());
+        alive_.resize(alive_.size() + ids.size(), 1);
     }
 
     void remove(std::span<const BoxId> ids) {
         std::vector<Slot> slots;
         slots.reserve(ids.size());
         for (const BoxId id : ids) slots.push_back(slot_of(id));
-        if (ids.size() > 1) {
-            std::unordered_set<BoxId> batch;
-            batch.reserve(ids.size());
-            for (const BoxId id : ids) {
-                if (!batch.insert(id).second)
-                    throw DuplicateIdError("box " + std::to_string(id) +
-                                           " is named twice in one remove");
+        // A repeated id names a slot twice: marked on the first visit, found on the second,
+        // and every mark is undone before the error leaves.
+        constexpr std::uint8_t kNamed = 2;
+        for (std::size_t i = 0; i < slots.size(); ++i) {
+            if (alive_[slots[i]] == kNamed) {
+                for (std::size_t j = 0; j < i; ++j) alive_[slots[j]] = 1;
+                throw DuplicateIdError("box " + std::to_string(ids[i]) + " is named twice in one remove");
             }
+            alive_[slots[i]] = kNamed;
         }
         for (std::size_t i = 0; i < ids.size(); ++i) kill(ids[i], slots[i]);
     }
@@ -113,17 +111,17 @@ public:
         const auto n = static_cast<BoxId>(boxes.size());
         // Ids at or above n go first, so that the slots they free are compacted together.
         std::vector<std::pair<BoxId, Slot>> doomed;
-        for (const auto& [id, slot] : slot_of_id_) {
+        slot_of_id_.for_each([&](BoxId id, Slot slot) {
             if (id >= n) doomed.emplace_back(id, slot);
-        }
+        });
         std::size_t fresh = 0;
         for (BoxId i = 0; i < n; ++i) fresh += contains(i) ? 0 : 1;
         reserve_for(fresh);
         for (const auto& [id, slot] : doomed) kill(id, slot);
         for (BoxId i = 0; i < n; ++i) {
-            const auto it = slot_of_id_.find(i);
-            if (it != slot_of_id_.end()) {
-                boxes_[it->second] = boxes[i];
+            const Slot slot = slot_of_id_.find(i);
+            if (slot != kNoSlot) {
+                boxes_[slot] = boxes[i];
             } else {
                 append(i, boxes[i]);
             }
@@ -150,7 +148,7 @@ public:
             if (next != s) {
                 boxes_[next] = boxes_[s];
                 ids_[next] = ids_[s];
-                slot_of_id_[ids_[next]] = next;
+                slot_of_id_.move(ids_[next], next);
             }
             alive_[next] = 1;
             ++next;
@@ -163,13 +161,8 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        // unordered_map: one pointer per bucket and one node per element holding the next
-        // pointer and the (key, value) pair. libstdc++ caches no hash code in the node for
-        // integer keys, whose std::hash it deems fast.
-        constexpr std::size_t node_bytes = sizeof(void*) + sizeof(std::pair<const BoxId, Slot>);
         return boxes_.capacity() * sizeof(box_type) + ids_.capacity() * sizeof(BoxId) +
-               alive_.capacity() + slot_of_id_.bucket_count() * sizeof(void*) +
-               slot_of_id_.size() * node_bytes;
+               alive_.capacity() + slot_of_id_.bytes_held();
     }
 
 private:
@@ -200,14 +193,14 @@ private:
         boxes_.reserve(boxes_.size() + extra);
         ids_.reserve(ids_.size() + extra);
         alive_.reserve(alive_.size() + extra);
-        slot_of_id_.reserve(slot_of_id_.size() + extra);
+        slot_of_id_.reserve(extra);
     }
     void append(BoxId id, const box_type& box) {
         const auto slot = static_cast<Slot>(boxes_.size());
         boxes_.push_back(box);
         ids_.push_back(id);
         alive_.push_back(1);
-        slot_of_id_.emplace(id, slot);
+        slot_of_id_.insert(id, slot);
     }
     void kill(BoxId id, Slot slot) {
         alive_[slot] = 0;
@@ -218,7 +211,7 @@ private:
     std::vector<box_type> boxes_;
     std::vector<BoxId> ids_;
     std::vector<std::uint8_t> alive_;
-    std::unordered_map<BoxId, Slot> slot_of_id_;
+    IdIndex slot_of_id_;
     std::size_t removed_ = 0;
 };
 

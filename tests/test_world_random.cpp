@@ -81,8 +81,10 @@ protected:
 
 private:
     BoxId fresh_id(Random& random) {
-        // Gaps between ids, so that ids are not slots in disguise.
+        // Gaps between ids, so that ids are not slots in disguise; some far above the others, so
+        // that the id index keeps both its array (small ids) and its hash map (large ones) busy.
         next_id_ += 1 + uniform_index(random, 3);
+        if (chance(random, 0.1)) return next_id_ | (BoxId{1} << 40) | (BoxId{uniform_index(random, 1000)} << 50);
         return next_id_;
     }
 
