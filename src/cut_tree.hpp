@@ -119,15 +119,22 @@ public:
     /// and one segment full. The caller then sets the group's band with set_band().
     void cut(int level, std::size_t group, std::span<Real> keys) {
         Real* out = cuts_[level].data() + group * (k_ - 1);
-        const std::size_t n = keys.size();
         if (k_ > 1) {
-            if (n == 0) {
+            if (keys.empty()) {
                 std::fill(out, out + (k_ - 1), Real{0});
             } else {
-                select_quantiles(keys, 0, n, 1, k_, out);
+                const std::span<Real> sample = evenly_spaced_sample(keys);
+                select_quantiles(sample, 0, sample.size(), 1, k_, out);
             }
         }
     }
+
+    /// Keys per segment above which a cut takes its quantiles from an evenly spaced sample of
+    /// this many keys per segment instead of from all of them. The planes only need to be
+    /// about even: the band (set_band) is measured on the real counts, and a sample of 256 per
+    /// segment is within about 6% of the true quantiles. It makes the first cuts of a large
+    /// world (1M boxes: 1M keys on level 0, 28k per group on level 1) several times cheaper.
+    static constexpr std::size_t kSamplePerSegment = 256;
 
     /// Sets the band of a group just cut: its fullest segment may grow by half (and at least
     /// to twice the even share) before the group is cut again. Measuring the band on the fresh
@@ -153,6 +160,18 @@ public:
     }
 
 private:
+    // The keys at positions floor(i n / s), moved to the front (position floor(i n / s) >= i is
+    // not written before it is read). Deterministic. An order of the keys that aliases with the
+    // stride can only make the planes uneven, which costs time and is corrected by the next
+    // cut; it never changes the pairs.
+    std::span<Real> evenly_spaced_sample(std::span<Real> keys) const noexcept {
+        const std::size_t n = keys.size();
+        const std::size_t s = kSamplePerSegment * k_;
+        if (n <= 2 * s) return keys;
+        for (std::size_t i = 0; i < s; ++i) keys[i] = keys[i * n / s];
+        return keys.first(s);
+    }
+
     // The key of rank floor(j n / k) for every j in [first_j, last_j), all of whose ranks lie in
     // [from, to): select the middle quantile, then recurse on either side of it. Each level of
     // the recursion is one linear pass, so O(n log k) in all, where selecting the quantiles one

@@ -357,7 +357,10 @@ std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::siz
     const std::uint32_t k = cuts_.segments();
     std::fill(count, count + k, 0U);
     std::uint32_t lo = 0;
+    constexpr std::size_t ahead = 16;
     for (std::size_t i = 0; i < entries.size(); ++i) {
+        // In a cold order (the first detection) the entries point anywhere in the box array.
+        if (i + ahead < entries.size()) __builtin_prefetch(&boxes[entries[i + ahead]]);
         const Position position = entries[i];
         // Only marks of earlier levels (published: 2) count here. A mark another thread makes on
         // this level meanwhile (1) is ignored, so that counts, and the cuts they decide, do not

@@ -1,0 +1,82 @@
+// The persistent cut planes (src/cut_tree.hpp): equal-count cuts, exact on small groups and
+// from an evenly spaced sample on large ones, and the location of values against them.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "cut_tree.hpp"
+
+namespace smb::detail {
+namespace {
+
+std::vector<std::size_t> segment_counts(const CutTree<double, 2>& tree, const std::vector<double>& keys) {
+    std::vector<std::size_t> counts(tree.segments(), 0);
+    for (const double key : keys) ++counts[segment_of(tree.cuts(0, 0), key)];
+    return counts;
+}
+
+TEST(CutTree, SmallGroupsAreCutAtTheExactQuantiles) {
+    CutTree<double, 2> tree;
+    tree.reshape(4);
+    std::vector<double> keys(400);
+    for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = static_cast<double>((i * 7919) % 400);
+    const std::vector<double> original = keys;
+    tree.cut(0, 0, keys);
+    EXPECT_EQ(segment_counts(tree, original), (std::vector<std::size_t>{100, 100, 100, 100}));
+}
+
+TEST(CutTree, LargeGroupsAreCutFromASampleWithinAFewPercentOfEven) {
+    CutTree<double, 2> tree;
+    tree.reshape(40);
+    std::mt19937_64 random(7);
+    std::normal_distribution<double> coordinate(0.0, 10.0);
+    std::vector<double> keys(1000000);
+    for (double& key : keys) key = coordinate(random);
+    const std::vector<double> original = keys;
+    tree.cut(0, 0, keys);
+    const auto counts = segment_counts(tree, original);
+    const double even = static_cast<double>(original.size()) / 40.0;
+    for (const std::size_t count : counts) {
+        EXPECT_GT(static_cast<double>(count), 0.75 * even);
+        EXPECT_LT(static_cast<double>(count), 1.25 * even);
+    }
+    EXPECT_TRUE(std::is_sorted(tree.cuts(0, 0).begin(), tree.cuts(0, 0).end()));
+}
+
+TEST(CutTree, EqualKeysShareASegment) {
+    CutTree<double, 2> tree;
+    tree.reshape(8);
+    std::vector<double> keys(100000, 3.0);
+    for (std::size_t i = 0; i < 1000; ++i) keys[i * 100] = static_cast<double>(i);
+    const std::vector<double> original = keys;
+    tree.cut(0, 0, keys);
+    const auto planes = tree.cuts(0, 0);
+    const std::uint32_t of_three = segment_of(planes, 3.0);
+    // Every key 3.0 is in one segment, whatever the planes.
+    for (const double key : original) {
+        if (key == 3.0) {
+            EXPECT_EQ(segment_of(planes, key), of_three);
+        }
+    }
+}
+
+TEST(CutTree, SegmentNearAgreesWithSegmentOf) {
+    std::vector<double> planes;
+    for (int i = 0; i < 100; ++i) planes.push_back(i * 1.5);
+    std::mt19937_64 random(3);
+    std::uniform_real_distribution<double> value(-10.0, 160.0);
+    for (int trial = 0; trial < 10000; ++trial) {
+        const double v = trial % 50 == 0 ? planes[trial % planes.size()] : value(random);
+        const auto hint = static_cast<std::uint32_t>(random() % 102);
+        ASSERT_EQ(segment_near(std::span<const double>(planes), v, hint), segment_of(std::span<const double>(planes), v));
+        ASSERT_EQ(segment_of(std::span<const double>(planes).first(40), v),
+                  static_cast<std::uint32_t>(std::count_if(planes.begin(), planes.begin() + 40, [&](double p) { return p <= v; })));
+    }
+}
+
+}  // namespace
+}  // namespace smb::detail
