@@ -97,10 +97,10 @@ public:
     void update(std::span<const BoxId> ids, std::span<const box_type> boxes) {
         require_same_length(ids.size(), boxes.size(), "update");
         validate_boxes(ids, boxes);
-        std::vector<Slot> slots;
-        slots.reserve(ids.size());
-        for (const BoxId id : ids) slots.push_back(slot_of(id));
-        for (std::size_t i = 0; i < ids.size(); ++i) boxes_[slots[i]] = boxes[i];
+        // Every id is looked up twice rather than once into a list of slots: a simulation
+        // updates every box every step, and the list would be an allocation per step.
+        for (const BoxId id : ids) (void)slot_of(id);
+        for (std::size_t i = 0; i < ids.size(); ++i) boxes_[slot_of_id_.find(ids[i])] = boxes[i];
     }
 
     void assign(std::span<const box_type> boxes) {

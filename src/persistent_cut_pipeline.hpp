@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <span>
 #include <vector>
 
@@ -601,9 +602,11 @@ std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Re
 /// Runs work(item, collect, home, give_up) for the items 0..count-1 (columns, oversized boxes)
 /// so that their pairs reach `report`, and their home boxes `home`, in item order whatever the
 /// number of threads. One thread: straight through. Several: rounds of items shared among the
-/// threads, each item's pairs buffered and handed on in order. An item whose pairs outgrow
-/// its buffer's cap (a crowd of identical boxes: billions of pairs) gives up and is run again
-/// alone when its turn comes, straight into the caller's sink, so memory stays bounded.
+/// threads, each item's pairs buffered; while the threads work on one round, the calling thread
+/// first hands the previous round on (so the caller's sink only ever runs on the thread that
+/// called detect(), and the hand-over overlaps the work). An item whose pairs outgrow its
+/// buffer's cap (a crowd of identical boxes: billions of pairs) gives up and is run again alone
+/// when its turn comes, straight into the caller's sink, so memory stays bounded.
 template <std::floating_point Real, int Dim>
 template <class Report, class Work>
 std::size_t PersistentCutPipeline<Real, Dim>::in_ordered_rounds(std::size_t count, Report& report,
@@ -615,28 +618,14 @@ std::size_t PersistentCutPipeline<Real, Dim>::in_ordered_rounds(std::size_t coun
         return moves;
     }
     const std::size_t round = 8 * static_cast<std::size_t>(threads_);
-    if (blocks_.size() < round) blocks_.resize(round);
-    for (std::size_t first = 0; first < count; first += round) {
-        const std::size_t in_round = std::min(round, count - first);
-#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
-        for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(in_round); ++b) {
-            BlockOutput& block = blocks_[static_cast<std::size_t>(b)];
-            block.pairs.clear();
-            block.home.clear();
-            block.overflowed = false;
-            auto collect = [&block, this](Position x, Position y) {
-                if (block.pairs.size() >= kBlockPairCap) {
-                    block.overflowed = true;
-                    return;
-                }
-                const BoxId u = ordered_ids_[x];
-                const BoxId v = ordered_ids_[y];
-                block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
-            };
-            block.moves = work(first + static_cast<std::size_t>(b), collect, block.home, &block.overflowed);
-        }
-        for (std::size_t b = 0; b < in_round; ++b) {
-            BlockOutput& block = blocks_[b];
+    const std::size_t rounds = (count + round - 1) / round;
+    if (blocks_.size() < 2 * round) blocks_.resize(2 * round);
+    // Round r's blocks: round * (r % 2) onwards; a round is handed on while the next is worked.
+    auto block_of = [&](std::size_t r, std::size_t b) -> BlockOutput& { return blocks_[round * (r % 2) + b]; };
+    auto hand_on = [&](std::size_t r) {
+        const std::size_t first = r * round;
+        for (std::size_t b = 0; b < std::min(round, count - first); ++b) {
+            BlockOutput& block = block_of(r, b);
             if (block.overflowed) {
                 moves += work(first + b, report_ids, home, nullptr);
             } else {
@@ -646,7 +635,53 @@ std::size_t PersistentCutPipeline<Real, Dim>::in_ordered_rounds(std::size_t coun
             }
             if (block.pairs.capacity() > 2 * kBlockPairCap) std::vector<Pair>().swap(block.pairs);
         }
+    };
+    // The sink may throw: caught on the calling thread, the rounds left are skipped, and it is
+    // thrown again once the threads have joined.
+    std::exception_ptr failure;
+    std::atomic<bool> failed{false};
+#pragma omp parallel num_threads(threads_)
+    {
+        for (std::size_t r = 0; r <= rounds; ++r) {
+#pragma omp master
+            {
+                if (r > 0 && !failed.load(std::memory_order_relaxed)) {
+                    try {
+                        hand_on(r - 1);
+                    } catch (...) {
+                        failure = std::current_exception();
+                        failed.store(true, std::memory_order_relaxed);
+                    }
+                }
+            }
+            if (r < rounds) {
+                const std::size_t first = r * round;
+                const auto in_round = static_cast<std::ptrdiff_t>(std::min(round, count - first));
+                // The barrier at the end of this loop also waits for the hand-over above, so the
+                // next round never writes into blocks that are still being handed on.
+#pragma omp for schedule(dynamic, 1)
+                for (std::ptrdiff_t b = 0; b < in_round; ++b) {
+                    BlockOutput& block = block_of(r, static_cast<std::size_t>(b));
+                    block.pairs.clear();
+                    block.home.clear();
+                    block.overflowed = false;
+                    block.moves = 0;
+                    if (failed.load(std::memory_order_relaxed)) continue;
+                    auto collect = [&block, this](Position x, Position y) {
+                        if (block.pairs.size() >= kBlockPairCap) {
+                            block.overflowed = true;
+                            return;
+                        }
+                        const BoxId u = ordered_ids_[x];
+                        const BoxId v = ordered_ids_[y];
+                        block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
+                    };
+                    block.moves = work(first + static_cast<std::size_t>(b), collect, block.home, &block.overflowed);
+                }
+            }
+        }
     }
+    if (failure) std::rethrow_exception(failure);
     return moves;
 }
 

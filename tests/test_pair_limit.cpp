@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "reference/brute_force.hpp"
@@ -59,6 +61,48 @@ TEST(PairLimit, WorldStaysValidAfterASinkThrows) {
     const auto expected = test::brute_force_pairs<double, 2>(std::span<const Box2d>(boxes));
     EXPECT_EQ(pairs, expected);
     EXPECT_EQ(world.size(), boxes.size());
+}
+
+// Many columns of cells, so that several threads work in several rounds while the calling
+// thread hands the pairs on.
+std::vector<Box3d> scattered_boxes(std::size_t n) {
+    std::mt19937_64 random(11);
+    std::uniform_real_distribution<double> place(0.0, 60.0);
+    std::vector<Box3d> boxes;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double x = place(random), y = place(random), z = place(random);
+        boxes.push_back(Box3d{{x, y, z}, {x + 1.5, y + 1.5, z + 1.5}});
+    }
+    return boxes;
+}
+
+TEST(PairLimit, SinkRunsOnTheCallingThreadAndMayThrowWhateverTheThreadCount) {
+    const std::vector<Box3d> boxes = scattered_boxes(40000);
+    const auto expected = test::brute_force_pairs<double, 3>(std::span<const Box3d>(boxes));
+    ASSERT_GT(expected.size(), 2000U);
+    for (const std::size_t threads : {1U, 2U, 3U}) {
+        WorldSettings settings;
+        settings.threads = threads;
+        settings.pair_chunk_size = 100;
+        World3d world(settings);
+        world.assign(boxes);
+        const std::thread::id caller = std::this_thread::get_id();
+        for (const int throw_at : {1, 5, 17}) {
+            int calls = 0;
+            auto throwing_sink = [&](std::span<const Pair>) {
+                EXPECT_EQ(std::this_thread::get_id(), caller) << threads << " threads";
+                if (++calls == throw_at) throw std::runtime_error("consumer gave up");
+            };
+            EXPECT_THROW(world.detect(throwing_sink), std::runtime_error) << threads << " threads";
+        }
+        std::vector<Pair> pairs;
+        world.detect([&](std::span<const Pair> chunk) {
+            EXPECT_EQ(std::this_thread::get_id(), caller) << threads << " threads";
+            pairs.insert(pairs.end(), chunk.begin(), chunk.end());
+        });
+        sort_pairs(pairs);
+        EXPECT_EQ(pairs, expected) << threads << " threads";
+    }
 }
 
 }  // namespace
