@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "growth.hpp"
 #include "id_index.hpp"
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
@@ -190,9 +191,9 @@ private:
             throw ArgumentError("a " + std::to_string(Dim) + "D world holds at most " +
                                 std::to_string(max_slots) + " boxes (including boxes removed "
                                 "since the last detection)");
-        boxes_.reserve(boxes_.size() + extra);
-        ids_.reserve(ids_.size() + extra);
-        alive_.reserve(alive_.size() + extra);
+        reserve_with_slack(boxes_, boxes_.size() + extra);
+        reserve_with_slack(ids_, ids_.size() + extra);
+        reserve_with_slack(alive_, alive_.size() + extra);
         slot_of_id_.reserve(extra);
     }
     void append(BoxId id, const box_type& box) {

@@ -29,6 +29,7 @@
 #include "box_store.hpp"
 #include "cell_sweep.hpp"
 #include "cut_tree.hpp"
+#include "growth.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
@@ -187,6 +188,7 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
                                               Report& report, DetectStats& stats) {
     const auto store_boxes = store.boxes();
     const std::size_t n = store_boxes.size();
+    reserve_with_slack(order_, n);
     for (std::size_t slot = listed_; slot < n; ++slot) order_.push_back(static_cast<Slot>(slot));
     listed_ = n;
     SMB_ASSERT(order_.size() == n, "the order holds every box once");
@@ -240,7 +242,8 @@ template <std::floating_point Real, int Dim>
 double PersistentCutPipeline<Real, Dim>::run_levels(std::span<const Box<Real, Dim>> store_boxes,
                                                    std::span<const BoxId> store_ids) {
     const std::size_t n = store_boxes.size();
-    oversized_.assign(n, 0);
+    resize_with_slack(oversized_, n);
+    std::fill(oversized_.begin(), oversized_.end(), std::uint8_t{0});
     oversized_list_.clear();
     // The boxes are copied once in last step's cell order: every later pass reads them almost
     // sequentially, where reading them by slot would miss the cache on nearly every box.
@@ -286,7 +289,7 @@ void PersistentCutPipeline<Real, Dim>::renumber_in_cell_order(std::span<const Bo
     SMB_ASSERT(next_order_.size() == n, "every box has exactly one home cell");
     // ranges_ is free once the levels are done: it holds the new number of each old one.
     std::vector<std::uint32_t>& renumbered = ranges_;
-    renumbered.resize(n);
+    resize_with_slack(renumbered, n);
     for (std::size_t i = 0; i < n; ++i) {
         renumbered[next_order_[i]] = static_cast<Position>(i);
         next_order_[i] = order_[next_order_[i]];
@@ -326,8 +329,8 @@ template <std::floating_point Real, int Dim>
 void PersistentCutPipeline<Real, Dim>::gather_in_order(std::span<const Box<Real, Dim>> store_boxes,
                                                        std::span<const BoxId> store_ids) {
     const std::size_t n = order_.size();
-    ordered_.resize(n);
-    ordered_ids_.resize(n);
+    resize_with_slack(ordered_, n);
+    resize_with_slack(ordered_ids_, n);
     constexpr std::size_t ahead = 16;
     const auto count = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for num_threads(threads_) schedule(static)
@@ -410,7 +413,7 @@ double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::size_t n,
                                                              std::vector<std::uint32_t>& out_begin) {
     const std::uint32_t k = cuts_.segments();
     const auto shares = static_cast<std::size_t>(threads_);
-    ranges_.resize(n);
+    resize_with_slack(ranges_, n);
     auto share_begin = [&](std::size_t t) { return n * t / shares; };
     auto locate_shares = [&]() {
         std::uint32_t fullest = 0;
@@ -460,7 +463,7 @@ double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::size_t n,
         }
     }
     out_begin[k] = offset;
-    out.resize(offset);
+    resize_with_slack(out, offset);
     Position* target = out.data();
 #pragma omp parallel for num_threads(threads_) schedule(static, 1)
     for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
@@ -490,7 +493,7 @@ double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<cons
     const std::uint32_t k = cuts_.segments();
     const int axis = axis_of_level(level);
     SMB_ASSERT(in_begin.size() == groups + 1, "one offset per group");
-    ranges_.resize(in.size());
+    resize_with_slack(ranges_, in.size());
     // The index array: registrations per segment (shifted by one), turned into offsets below.
     counts_.resize(groups * k + 1);
     std::uint32_t* count = counts_.data();
@@ -547,7 +550,7 @@ double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<cons
     }
     for (std::size_t s = 0; s < groups * k; ++s) count[s + 1] += count[s];
     out_begin.assign(count, count + groups * k + 1);
-    out.resize(out_begin.back());
+    resize_with_slack(out, out_begin.back());
     // The stack pass: each entry goes to the next free place of its segments, keeping the order
     // the entries came in (last step's), which keeps every cell almost sorted.
     Position* target = out.data();
@@ -587,7 +590,7 @@ template <class Report>
 std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Real, Dim>> boxes,
                                                           Report& report) {
     next_order_.clear();
-    next_order_.reserve(boxes.size());
+    reserve_with_slack(next_order_, boxes.size());
     const std::size_t moves = in_ordered_rounds(
         cuts_.groups(Dim - 1), report, next_order_,
         [&](std::size_t column, auto& collect, std::vector<Position>& home, const bool* give_up) {
