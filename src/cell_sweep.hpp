@@ -35,11 +35,24 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 using CellFloor = std::array<Real, Dim>;
 
+/// `value` as the nearest float; beyond the float range, the largest float of its sign (a
+/// plain conversion would be undefined there). Rounding never reverses an order: x <= y gives
+/// to_float(x) <= to_float(y), which is all the cell check asks of it.
+template <std::floating_point Real>
+[[nodiscard]] inline float to_float(Real value) noexcept {
+    if constexpr (std::is_same_v<Real, float>) {
+        return value;
+    } else {
+        constexpr auto top = static_cast<Real>(std::numeric_limits<float>::max());
+        return static_cast<float>(std::clamp(value, -top, top));
+    }
+}
+
 /// A 32-bit key that never decreases as `value` grows: `value` rounded down to float, with -0
 /// made +0 (they are equal coordinates), mapped so that unsigned order is numeric order.
 template <std::floating_point Real>
 [[nodiscard]] inline std::uint32_t monotone_key(Real value) noexcept {
-    const float rounded = static_cast<float>(value) + 0.0F;  // -0 + 0 = +0
+    const float rounded = to_float(value) + 0.0F;  // -0 + 0 = +0
     const auto bits = std::bit_cast<std::uint32_t>(rounded);
     std::uint32_t key = (bits & 0x80000000U) != 0 ? ~bits : bits | 0x80000000U;
     if constexpr (!std::is_same_v<Real, float>) {
@@ -69,7 +82,7 @@ public:
         const std::size_t moves = insertion_sort(order, m);
         order_equal_keys(order, m, entries, boxes, ids);
         lay_out_sorted(order, m, entries, boxes, floor);
-        sweep(m, report, home);
+        sweep(m, boxes, report, home);
         return moves;
     }
 
@@ -83,18 +96,24 @@ public:
     }
 
 private:
-    // Four candidates are tested at once (GCC vector extensions: SSE on x86-64, NEON on arm64).
+    // Four candidates are tested at once (GCC vector extensions: SSE on x86-64, NEON on arm64),
+    // always on floats. Double boxes are laid out rounded to floats (to_float), which keeps
+    // every order, so the float test passes every pair that overlaps, and each pair it passes
+    // is tested again exactly. Four double lanes
+    // fill two SSE registers and measured slower than one candidate at a time (and the
+    // layout twice the bytes); four float lanes fill one.
     static constexpr std::size_t kLanes = 4;
-    using Mask = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
-    using RealLanes [[gnu::vector_size(kLanes * sizeof(Real))]] = Real;
-    using MaskLanes [[gnu::vector_size(kLanes * sizeof(Real))]] = Mask;
+    static constexpr bool kExactLanes = std::is_same_v<Real, float>;
+    using Mask = std::int32_t;
+    using FloatLanes [[gnu::vector_size(kLanes * sizeof(float))]] = float;
+    using MaskLanes [[gnu::vector_size(kLanes * sizeof(float))]] = Mask;
 
-    /// The cell's boxes in x order, one array per coordinate, padded with kLanes boxes that
-    /// reach nothing (min x = +inf, key above every real key) so that the last group of lanes
-    /// may read past the end.
+    /// The cell's boxes in x order, one array per coordinate (as floats),
+    /// padded with kLanes boxes that reach nothing (min NaN, key above every real key) so that
+    /// the last group of lanes may read past the end.
     struct SortedColumns {
-        std::array<std::vector<Real>, Dim> min;
-        std::array<std::vector<Real>, Dim> max;
+        std::array<std::vector<float>, Dim> min;
+        std::array<std::vector<float>, Dim> max;
         std::vector<Mask> inside;
         std::vector<std::uint32_t> key;
         std::vector<std::uint32_t> position;
@@ -115,8 +134,8 @@ private:
             const Box<Real, Dim>& box = boxes[position];
             std::uint32_t inside = 0;
             for (int k = 0; k < Dim; ++k) {
-                sorted_.min[k][r] = box.min[k];
-                sorted_.max[k][r] = box.max[k];
+                sorted_.min[k][r] = to_float(box.min[k]);
+                sorted_.max[k][r] = to_float(box.max[k]);
                 inside |= (box.min[k] >= floor[k] ? 1U : 0U) << k;
             }
             sorted_.inside[r] = static_cast<Mask>(inside);
@@ -125,8 +144,9 @@ private:
         }
         for (std::size_t r = m; r < padded; ++r) {
             for (int k = 0; k < Dim; ++k) {
-                sorted_.min[k][r] = std::numeric_limits<Real>::infinity();
-                sorted_.max[k][r] = -std::numeric_limits<Real>::infinity();
+                // NaN: no comparison holds, even against a max rounded up to +inf.
+                sorted_.min[k][r] = std::numeric_limits<float>::quiet_NaN();
+                sorted_.max[k][r] = -std::numeric_limits<float>::infinity();
             }
             sorted_.inside[r] = 0;
             sorted_.key[r] = ~std::uint32_t{0};  // above the key of any finite max
@@ -134,8 +154,7 @@ private:
         }
     }
 
-    // Out-parameters, not return values: a 32-byte vector (double lanes) returned by value
-    // would change the ABI with the target's vector width.
+    // Through memcpy: the arrays are not aligned to the lanes' width.
     template <class Lanes, class Value>
     static void load(Lanes& lanes, const Value* from) noexcept {
         std::memcpy(&lanes, from, sizeof lanes);
@@ -143,42 +162,31 @@ private:
 
     // The sweep on x: box i against the boxes after it whose key does not pass the key of its
     // max x, kLanes at a time. Keys never decrease along the order, so once a group of lanes
-    // starts past that key no later box reaches i on x; within a group, the exact x test (both
-    // ends: equal keys may hide a slight disorder of the exact values) drops the others.
+    // starts past that key no later box reaches i on x; within a group, the x test on both ends
+    // (equal keys may hide a slight disorder of the exact values) drops the others. A box j
+    // that reaches i has min_j <= max_i, so key_j <= key(to_float(max_i)): the scan goes far
+    // enough.
     template <class Report>
-    void sweep(std::size_t m, Report& report, std::vector<std::uint32_t>& home) const {
+    void sweep(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
+               std::vector<std::uint32_t>& home) const {
         const std::uint32_t* key = sorted_.key.data();
         const Mask* inside = sorted_.inside.data();
         const std::uint32_t* position = sorted_.position.data();
         for (std::size_t i = 0; i < m; ++i) {
             if (inside[i] == static_cast<Mask>(kAllInside)) home.push_back(position[i]);
             const std::uint32_t stop = monotone_key(sorted_.max[0][i]);
-            std::array<Real, Dim> low{}, high{};
+            std::array<float, Dim> low{}, high{};
             for (int k = 0; k < Dim; ++k) {
                 low[k] = sorted_.min[k][i];
                 high[k] = sorted_.max[k][i];
             }
             const Mask own = inside[i];
-            if constexpr (sizeof(Real) == 8) {
-                // Two doubles fill an SSE register: lanes of four cost more than they save
-                // (measured, docs/performance.md), so doubles take one candidate at a time.
-                for (std::size_t j = i + 1; key[j] <= stop; ++j) {
-                    // Bitwise on purpose: one branch per candidate, not one per comparison.
-                    unsigned hit = (inside[j] | own) == static_cast<Mask>(kAllInside) ? 1U : 0U;
-                    for (int k = 0; k < Dim; ++k) {
-                        hit &= static_cast<unsigned>(sorted_.min[k][j] <= high[k]) &
-                               static_cast<unsigned>(sorted_.max[k][j] >= low[k]);
-                    }
-                    if (hit != 0) report(position[i], position[j]);
-                }
-                continue;
-            }
             for (std::size_t j = i + 1; key[j] <= stop; j += kLanes) {
                 MaskLanes others;
                 load(others, inside + j);
                 MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
                 for (int k = 0; k < Dim; ++k) {
-                    RealLanes lower, upper;
+                    FloatLanes lower, upper;
                     load(lower, sorted_.min[k].data() + j);
                     load(upper, sorted_.max[k].data() + j);
                     hit &= lower <= high[k];
@@ -187,9 +195,9 @@ private:
                 unsigned bits = 0;
                 for (std::size_t lane = 0; lane < kLanes; ++lane) bits |= static_cast<unsigned>(hit[lane] & 1) << lane;
                 while (bits != 0) {
-                    const int lane = std::countr_zero(bits);
-                    report(position[i], position[j + static_cast<std::size_t>(lane)]);
+                    const std::uint32_t other = position[j + static_cast<std::size_t>(std::countr_zero(bits))];
                     bits &= bits - 1;
+                    if (kExactLanes || overlaps(boxes[position[i]], boxes[other])) report(position[i], other);
                 }
             }
         }

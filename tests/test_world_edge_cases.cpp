@@ -462,6 +462,40 @@ TYPED_TEST(WorldEdgeCaseTest, TinyBoxesFarFromTheOrigin) {
     this->check("near -1e9");
 }
 
+TYPED_TEST(WorldEdgeCaseTest, GapsAndOverlapsBelowFloatPrecision) {
+    // Neighbours that touch, overlap by one unit in the last place, or miss by one, at scales
+    // where float spacing is far coarser than that: the cells test floats rounded outwards
+    // and must hand every such pair to the exact test (double) or test it exactly (float).
+    Random random(1801);
+    BoxId id = 0;
+    for (const double scale : {1.0, 3.0e6, 7.0e19, 1.0e-30, -2.0e12, 1.0e300}) {
+        if (std::abs(scale) * 2 > static_cast<double>(std::numeric_limits<typename TestFixture::Real>::max())) continue;
+        for (std::size_t row = 0; row < scaled(60); ++row) {
+            typename TestFixture::BoxT left{}, right{};
+            for (int k = 0; k < TestFixture::Dim; ++k) {
+                const double base = scale * (1.0 + uniform(random, 0, 1e-3)) + scale * 1e-2 * static_cast<double>(row);
+                left.min[k] = static_cast<typename TestFixture::Real>(base);
+                left.max[k] = static_cast<typename TestFixture::Real>(base + std::abs(scale) * 1e-4);
+                right.min[k] = left.min[k];
+                right.max[k] = left.max[k];
+            }
+            // On x only, the right box starts one step before, at, or one step after the end
+            // of the left one.
+            using Coord = typename TestFixture::Real;
+            const Coord end = left.max[0];
+            switch (row % 3) {
+                case 0: right.min[0] = std::nextafter(end, -std::numeric_limits<Coord>::infinity()); break;
+                case 1: right.min[0] = end; break;
+                default: right.min[0] = std::nextafter(end, std::numeric_limits<Coord>::infinity()); break;
+            }
+            right.max[0] = std::max(right.min[0], static_cast<Coord>(end + std::abs(static_cast<double>(end)) * 1e-4));
+            this->insert(id++, left);
+            this->insert(id++, right);
+        }
+    }
+    this->check("one step apart at several scales");
+}
+
 TYPED_TEST(WorldEdgeCaseTest, MostBoxesJumpFarAway) {
     Random random(1801);
     const std::size_t count = scaled(1000);
