@@ -162,10 +162,11 @@ private:
 
     // The sweep on x: box i against the boxes after it whose key does not pass the key of its
     // max x, kLanes at a time. Keys never decrease along the order, so once a group of lanes
-    // starts past that key no later box reaches i on x; within a group, the x test on both ends
-    // (equal keys may hide a slight disorder of the exact values) drops the others. A box j
-    // that reaches i has min_j <= max_i, so key_j <= key(to_float(max_i)): the scan goes far
-    // enough.
+    // starts past that key no later box reaches i on x; within a group, min_j <= max_i drops
+    // the others. A box j that reaches i has min_j <= max_i, so key_j <= key(to_float(max_i)):
+    // the scan goes far enough. The other end, max_j >= min_i, needs no test: with float boxes
+    // equal keys are equal values, so min_i <= min_j <= max_j; with double boxes a disorder
+    // hidden by equal keys can pass the float test, which the exact test then settles.
     template <class Report>
     void sweep(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
                std::vector<std::uint32_t>& home) const {
@@ -175,7 +176,7 @@ private:
         for (std::size_t i = 0; i < m; ++i) {
             if (inside[i] == static_cast<Mask>(kAllInside)) home.push_back(position[i]);
             const std::uint32_t stop = monotone_key(sorted_.max[0][i]);
-            std::array<float, Dim> low{}, high{};
+            std::array<float, Dim> low{}, high{};  // low[0] unused: see above
             for (int k = 0; k < Dim; ++k) {
                 low[k] = sorted_.min[k][i];
                 high[k] = sorted_.max[k][i];
@@ -185,8 +186,10 @@ private:
                 MaskLanes others;
                 load(others, inside + j);
                 MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
-                for (int k = 0; k < Dim; ++k) {
-                    FloatLanes lower, upper;
+                FloatLanes lower, upper;
+                load(lower, sorted_.min[0].data() + j);
+                hit &= lower <= high[0];
+                for (int k = 1; k < Dim; ++k) {
                     load(lower, sorted_.min[k].data() + j);
                     load(upper, sorted_.max[k].data() + j);
                     hit &= lower <= high[k];
