@@ -89,6 +89,27 @@ struct SweepLanes<8> {
 #define SMB_SWEEP_AVX2 0
 #endif
 
+/// One bit per lane whose mask is set (all ones): a single instruction on x86-64, where the
+/// compiler would otherwise take the lanes out one by one.
+template <std::size_t Lanes>
+[[nodiscard]] inline unsigned lane_bits(const typename SweepLanes<Lanes>::Masks& hit) noexcept {
+    unsigned bits = 0;
+    for (std::size_t lane = 0; lane < Lanes; ++lane) bits |= static_cast<unsigned>(hit[lane] & 1) << lane;
+    return bits;
+}
+#if defined(__x86_64__) && defined(__GNUC__)
+template <>
+[[nodiscard]] inline unsigned lane_bits<4>(const SweepLanes<4>::Masks& hit) noexcept {
+    return static_cast<unsigned>(__builtin_ia32_movmskps(__builtin_bit_cast(SweepLanes<4>::Floats, hit)));
+}
+#endif
+#if SMB_SWEEP_AVX2
+template <>
+[[gnu::target("avx2")]] [[nodiscard]] inline unsigned lane_bits<8>(const SweepLanes<8>::Masks& hit) noexcept {
+    return static_cast<unsigned>(__builtin_ia32_movmskps256(__builtin_bit_cast(SweepLanes<8>::Floats, hit)));
+}
+#endif
+
 template <std::floating_point Real, int Dim>
 class CellSweep {
 public:
@@ -242,8 +263,7 @@ private:
                     hit &= lower <= high[k];
                     hit &= upper >= low[k];
                 }
-                unsigned bits = 0;
-                for (std::size_t lane = 0; lane < Lanes; ++lane) bits |= static_cast<unsigned>(hit[lane] & 1) << lane;
+                unsigned bits = lane_bits<Lanes>(hit);
                 while (bits != 0) {
                     const std::uint32_t other = position[j + static_cast<std::size_t>(std::countr_zero(bits))];
                     bits &= bits - 1;
