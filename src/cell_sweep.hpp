@@ -147,18 +147,17 @@ public:
 
 private:
     // Four or eight candidates are tested at once (GCC vector extensions; SweepLanes), always on
-    // floats. Double boxes are laid out rounded to floats (to_float), which keeps
-    // every order, so the float test passes every pair that overlaps, and each pair it passes
-    // is tested again exactly. Four double lanes
-    // fill two SSE registers and measured slower than one candidate at a time (and the
-    // layout twice the bytes); four float lanes fill one.
+    // floats. Double boxes are laid out rounded to floats (to_float), which keeps every order,
+    // so the float test passes every pair that overlaps, and each pair it passes is tested
+    // again exactly. Four double lanes fill two SSE registers and measured slower than one
+    // candidate at a time (and the layout takes twice the bytes); four float lanes fill one.
     static constexpr std::size_t kPadding = 8;  // the most lanes
     static constexpr bool kExactLanes = std::is_same_v<Real, float>;
     using Mask = std::int32_t;
 
-    /// The cell's boxes in x order, one array per coordinate (as floats),
-    /// padded with kPadding boxes that reach nothing (min NaN, key above every real key) so that
-    /// the last group of lanes may read past the end.
+    /// The cell's boxes in x order, one array per coordinate (as floats), padded with kPadding
+    /// boxes that reach nothing (min NaN, key above every real key) so that the last group of
+    /// lanes may read past the end.
     struct SortedColumns {
         std::array<std::vector<float>, Dim> min;
         std::array<std::vector<float>, Dim> max;
@@ -192,7 +191,7 @@ private:
         }
         for (std::size_t r = m; r < padded; ++r) {
             for (int k = 0; k < Dim; ++k) {
-                // NaN: no comparison holds, even against a max rounded up to +inf.
+                // NaN: no comparison with it holds, whatever the box it is tested against.
                 sorted_.min[k][r] = std::numeric_limits<float>::quiet_NaN();
                 sorted_.max[k][r] = -std::numeric_limits<float>::infinity();
             }
@@ -209,7 +208,7 @@ private:
     }
 
     // The sweep on x: box i against the boxes after it whose key does not pass the key of its
-    // max x, a group of lanes at a time. Keys never decrease along the order, so once a group of lanes
+    // max x, a group of lanes at a time. Keys never decrease along the order, so once a group
     // starts past that key no later box reaches i on x; within a group, min_j <= max_i drops
     // the others. A box j that reaches i has min_j <= max_i, so key_j <= key(to_float(max_i)):
     // the scan goes far enough. The other end, max_j >= min_i, needs no test: with float boxes

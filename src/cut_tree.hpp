@@ -129,9 +129,9 @@ public:
         }
     }
 
-    /// Keys per segment above which a cut takes its quantiles from an evenly spaced sample of
-    /// this many keys per segment instead of from all of them. The planes only need to be
-    /// about even: the band (set_band) is measured on the real counts, and a sample of 256 per
+    /// A group with more than twice this many keys per segment takes its quantiles from an
+    /// evenly spaced sample of this many keys per segment instead of from all of them. The
+    /// planes only need to be about even: the band (set_band) is measured on the real counts, and a sample of 256 per
     /// segment is within about 6% of the true quantiles. It makes the first cuts of a large
     /// world (1M boxes: 1M keys on level 0, 28k per group on level 1) several times cheaper.
     static constexpr std::size_t kSamplePerSegment = 256;

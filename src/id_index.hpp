@@ -86,10 +86,9 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        // unordered_map: one pointer per bucket and one node per element holding the next
-        // pointer and the (key, value) pair. libstdc++ caches no hash code in the node for
-        // integer keys, whose std::hash it deems fast.
-        // A map with one bucket keeps it inside itself (no allocation).
+        // unordered_map: one pointer per bucket (none allocated while there is a single one,
+        // kept inside the map) and one node per element holding the next pointer and the
+        // (key, value) pair; libstdc++ caches no hash code in the node for integer keys.
         constexpr std::size_t node_bytes = sizeof(void*) + sizeof(std::pair<const BoxId, Slot>);
         const std::size_t buckets = sparse_.bucket_count() > 1 ? sparse_.bucket_count() : 0;
         return dense_.capacity() * sizeof(Slot) + buckets * sizeof(void*) + sparse_.size() * node_bytes;
