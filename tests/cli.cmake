@@ -27,4 +27,19 @@ if(TARGET smb_cli)
       SMB_CLI_DATA_DIR="${CMAKE_CURRENT_LIST_DIR}/data/cli")
     add_dependencies(${name} smb_cli)
   endforeach()
+
+  # Randomised odd scenes (far, beyond the float range, tiny, mixed sizes, touching lattices,
+  # one-ulp gaps; churn over frames) through the binary, against a brute force in Python
+  # (standard library only), on both paths of the sweep.
+  find_program(SMB_PYTHON3 python3)
+  if(SMB_PYTHON3)
+    foreach(lanes default four)
+      set(test_name cli_pairs_random_odd_scenes_${lanes}_lanes)
+      add_test(NAME ${test_name}
+        COMMAND ${SMB_PYTHON3} ${PROJECT_SOURCE_DIR}/scripts/stress-pairs.py
+          --smb $<TARGET_FILE:smb_cli> --trials 20 --seed $<IF:$<STREQUAL:${lanes},four>,2,1>)
+      set_tests_properties(${test_name} PROPERTIES LABELS cli TIMEOUT 900)
+    endforeach()
+    set_tests_properties(cli_pairs_random_odd_scenes_four_lanes PROPERTIES ENVIRONMENT SMB_NO_AVX2=1)
+  endif()
 endif()
