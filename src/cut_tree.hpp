@@ -123,15 +123,33 @@ public:
             if (keys.empty()) {
                 std::fill(out, out + (k_ - 1), Real{0});
             } else {
-                const std::span<Real> sample = evenly_spaced_sample(keys);
-                select_quantiles(sample, 0, sample.size(), 1, k_, out);
+                select_quantiles(keys, 0, keys.size(), 1, k_, out);
             }
         }
     }
 
+    /// The axial cut of a group of n boxes, box j's lower end given by key_at(j, key) (false: the
+    /// box takes no part, being oversized). The keys are gathered into `scratch`: all of them,
+    /// or, in a group of more than twice kSamplePerSegment keys per segment, those of the boxes
+    /// at floor(i n / s) for s = kSamplePerSegment * k, which spares copying every key.
+    /// Deterministic. An order of the boxes that aliases with the stride can only make the
+    /// planes uneven, which costs time and is corrected by the next cut; it never changes the
+    /// pairs.
+    template <class KeyAt>
+    void cut_group(int level, std::size_t group, std::size_t n, KeyAt&& key_at, std::vector<Real>& scratch) {
+        const std::size_t sample = kSamplePerSegment * k_;
+        const std::size_t take = n > 2 * sample ? sample : n;
+        scratch.clear();
+        Real key{};
+        for (std::size_t i = 0; i < take; ++i) {
+            if (key_at(take == n ? i : i * n / take, key)) scratch.push_back(key);
+        }
+        cut(level, group, scratch);
+    }
+
     /// A group with more than twice this many keys per segment takes its quantiles from an
-    /// evenly spaced sample of this many keys per segment instead of from all of them. The
-    /// planes only need to be about even: the band (set_band) is measured on the real counts, and a sample of 256 per
+    /// evenly spaced sample of this many keys per segment instead of from all of them
+    /// (cut_group). The planes only need to be about even: the band (set_band) is measured on the real counts, and a sample of 256 per
     /// segment is within about 6% of the true quantiles. It makes the first cuts of a large
     /// world (1M boxes: 1M keys on level 0, 28k per group on level 1) several times cheaper.
     static constexpr std::size_t kSamplePerSegment = 256;
@@ -160,18 +178,6 @@ public:
     }
 
 private:
-    // The keys at positions floor(i n / s), moved to the front (position floor(i n / s) >= i is
-    // not written before it is read). Deterministic. An order of the keys that aliases with the
-    // stride can only make the planes uneven, which costs time and is corrected by the next
-    // cut; it never changes the pairs.
-    std::span<Real> evenly_spaced_sample(std::span<Real> keys) const noexcept {
-        const std::size_t n = keys.size();
-        const std::size_t s = kSamplePerSegment * k_;
-        if (n <= 2 * s) return keys;
-        for (std::size_t i = 0; i < s; ++i) keys[i] = keys[i * n / s];
-        return keys.first(s);
-    }
-
     // The key of rank floor(j n / k) for every j in [first_j, last_j), all of whose ranks lie in
     // [from, to): select the middle quantile, then recurse on either side of it. Each level of
     // the recursion is one linear pass, so O(n log k) in all, where selecting the quantiles one

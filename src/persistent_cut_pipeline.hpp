@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <exception>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "assert.hpp"
@@ -361,10 +362,13 @@ std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::siz
     const std::uint32_t k = cuts_.segments();
     std::fill(count, count + k, 0U);
     std::uint32_t lo = 0;
-    constexpr std::size_t ahead = 16;
+    [[maybe_unused]] constexpr std::size_t ahead = 16;
     for (std::size_t i = 0; i < entries.size(); ++i) {
-        // In a cold order (the first detection) the entries point anywhere in the box array.
-        if (i + ahead < entries.size()) __builtin_prefetch(&boxes[entries[i + ahead]]);
+        // In a cold order (the first detection) the entries of levels 1 and deeper point
+        // anywhere in the box array; level 0 reads it in order.
+        if constexpr (!std::is_same_v<Entries, PositionRange>) {
+            if (i + ahead < entries.size()) __builtin_prefetch(&boxes[entries[i + ahead]]);
+        }
         const Position position = entries[i];
         // Only marks of earlier levels (published: 2) count here. A mark another thread makes on
         // this level meanwhile (1) is ignored, so that counts, and the cuts they decide, do not
@@ -439,10 +443,10 @@ double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::size_t n,
     const std::uint32_t fullest = cuts_.was_cut(0, 0) ? locate_shares() : 0;
     if (cuts_.needs_cut(0, 0, fullest)) {
         const auto cut_start = Clock::now();
-        std::vector<Real>& keys = workers_[0].keys;
-        keys.resize(n);
-        for (std::size_t i = 0; i < n; ++i) keys[i] = boxes[i].min[axis_of_level(0)];
-        cuts_.cut(0, 0, keys);
+        cuts_.cut_group(0, 0, n, [&](std::size_t i, Real& key) {
+            key = boxes[i].min[axis_of_level(0)];
+            return true;
+        }, workers_[0].keys);
         const std::uint32_t balanced = locate_shares();
         std::size_t registrations = 0;
         for (const WorkerScratch& worker : workers_)
@@ -517,12 +521,13 @@ double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<cons
             const auto cut_start = Clock::now();
             // What the old planes called oversized is judged again against the new ones.
             worker.marks.resize(marked_before);
-            worker.keys.clear();
-            for (const Position position : entries) {
-                if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) != kPublished)
-                    worker.keys.push_back(boxes[position].min[axis]);
-            }
-            cuts_.cut(level, g, worker.keys);
+            cuts_.cut_group(level, g, entries.size(), [&](std::size_t i, Real& key) {
+                const Position position = entries[i];
+                if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) == kPublished)
+                    return false;
+                key = boxes[position].min[axis];
+                return true;
+            }, worker.keys);
             const std::uint32_t balanced = locate_group(level, g, entries, boxes, ranges, segment_count, worker);
             std::size_t registrations = 0;
             for (std::uint32_t s = 0; s < k; ++s) registrations += segment_count[s];

@@ -36,10 +36,11 @@ TEST(CutTree, LargeGroupsAreCutFromASampleWithinAFewPercentOfEven) {
     std::normal_distribution<double> coordinate(0.0, 10.0);
     std::vector<double> keys(1000000);
     for (double& key : keys) key = coordinate(random);
-    const std::vector<double> original = keys;
-    tree.cut(0, 0, keys);
-    const auto counts = segment_counts(tree, original);
-    const double even = static_cast<double>(original.size()) / 40.0;
+    std::vector<double> scratch;
+    tree.cut_group(0, 0, keys.size(), [&](std::size_t i, double& key) { key = keys[i]; return true; }, scratch);
+    EXPECT_EQ(scratch.size(), (CutTree<double, 2>::kSamplePerSegment * 40));
+    const auto counts = segment_counts(tree, keys);
+    const double even = static_cast<double>(keys.size()) / 40.0;
     for (const std::size_t count : counts) {
         EXPECT_GT(static_cast<double>(count), 0.75 * even);
         EXPECT_LT(static_cast<double>(count), 1.25 * even);
@@ -52,12 +53,16 @@ TEST(CutTree, EqualKeysShareASegment) {
     tree.reshape(8);
     std::vector<double> keys(100000, 3.0);
     for (std::size_t i = 0; i < 1000; ++i) keys[i * 100] = static_cast<double>(i);
-    const std::vector<double> original = keys;
-    tree.cut(0, 0, keys);
+    std::vector<double> scratch;
+    // Every third box takes no part (as an oversized box would); the others are sampled.
+    tree.cut_group(0, 0, keys.size(), [&](std::size_t i, double& key) {
+        key = keys[i];
+        return i % 3 != 0;
+    }, scratch);
     const auto planes = tree.cuts(0, 0);
     const std::uint32_t of_three = segment_of(planes, 3.0);
     // Every key 3.0 is in one segment, whatever the planes.
-    for (const double key : original) {
+    for (const double key : keys) {
         if (key == 3.0) {
             EXPECT_EQ(segment_of(planes, key), of_three);
         }
