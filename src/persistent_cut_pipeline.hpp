@@ -18,6 +18,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <concepts>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -31,6 +32,7 @@
 #include "cell_sweep.hpp"
 #include "cut_tree.hpp"
 #include "growth.hpp"
+#include "held_box.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
@@ -42,7 +44,7 @@
 
 namespace smb::detail {
 
-template <std::floating_point Real, int Dim>
+template <std::floating_point Real, int Dim, std::floating_point Input = Real>
 class PersistentCutPipeline {
 public:
     /// Drops removed slots from the order and renumbers the others (BoxStore::compact()).
@@ -55,11 +57,42 @@ public:
         listed_ = write;
     }
 
+    /// Forgets the slots from `n` on: a Detector's caller passed fewer boxes than last time.
+    void forget_slots_from(std::size_t n) {
+        if (n >= listed_) return;
+        std::erase_if(order_, [n](Slot slot) { return slot >= n; });
+        listed_ = std::min(listed_, n);
+    }
+
     /// Reports every overlapping pair once: report.append(pairs in a < b order) for runs,
     /// report(id_a, id_b) for single pairs.
     template <class Report>
     void detect(const BoxStore<Real, Dim>& store, const WorldSettings& settings, Report& report,
-                DetectStats& stats);
+                DetectStats& stats)
+        requires std::same_as<Real, Input>
+    {
+        detect(store.boxes(), store.ids(), settings, report, stats);
+    }
+
+    /// The same over boxes the caller keeps: box `slot` of `input` under id ids[slot], or under
+    /// id `slot` where `ids` is empty. Where the pipeline holds floats of double input, the held
+    /// boxes are shifted by origin() and rounded (held_box.hpp), and each pair they
+    /// cannot settle is tested again on `input`.
+    template <class Report>
+    void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const WorldSettings& settings,
+                Report& report, DetectStats& stats);
+
+    /// Where held coordinates start from (rounded input only); a new origin forgets every plane.
+    void set_origin(const std::array<Input, Dim>& origin) {
+        origin_ = origin;
+        cuts_.forget();
+        cold_ = true;
+    }
+    [[nodiscard]] const std::array<Input, Dim>& origin() const noexcept { return origin_; }
+
+    /// Pairs that the held floats could not settle, tested again on the input, in the last
+    /// detection (rounded input only).
+    [[nodiscard]] std::size_t retested() const noexcept { return retested_; }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes = (order_.capacity() + next_order_.capacity()) * sizeof(Slot);
@@ -119,9 +152,9 @@ private:
 
     void plan_segments(std::size_t n, const WorldSettings& settings);
     void plan_threads(const WorldSettings& settings);
-    double run_levels(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
-    void renumber_in_cell_order(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
-    void gather_in_order(std::span<const Box<Real, Dim>> store_boxes, std::span<const BoxId> store_ids);
+    double run_levels(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids);
+    void renumber_in_cell_order(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids);
+    void gather_in_order(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids);
     double regroup_level(int level, std::span<const Position> in, std::span<const std::uint32_t> in_begin,
                          std::span<const Box<Real, Dim>> boxes, std::vector<Position>& out,
                          std::vector<std::uint32_t>& out_begin);
@@ -151,6 +184,27 @@ private:
     CellFloor<Real, Dim> floor_of_cell(std::size_t cell) const;
     void check_invariants(std::span<const Box<Real, Dim>> boxes) const;
 
+    /// Held boxes at positions a and b overlap: true when their input boxes do too.
+    [[nodiscard]] bool confirmed(Position a, Position b) {
+        if constexpr (kRounded) {
+            if (surely_overlap(ordered_[a], ordered_[b])) return true;
+            // Counted per thread would be exact too; a relaxed atomic is simpler and rare.
+            std::atomic_ref<std::size_t>(retested_).fetch_add(1, std::memory_order_relaxed);
+            return overlaps(input_[ordered_ids_[a]], input_[ordered_ids_[b]]);
+        } else {
+            (void)a;
+            (void)b;
+            return true;
+        }
+    }
+
+    /// Floats held for double input: every pair the floats pass is confirmed on the input.
+    static constexpr bool kRounded = !std::same_as<Real, Input>;
+    static_assert(!kRounded || std::same_as<Real, float>, "rounded input is held as floats");
+
+    std::span<const Box<Input, Dim>> input_;  // the boxes of the detection under way
+    std::array<Input, Dim> origin_{};
+    std::size_t retested_ = 0;
     std::vector<Slot> order_;       // every slot once: last step's cells, x-sorted within each
     std::vector<Position> next_order_;   // positions of the home boxes, cell by cell
     std::vector<Box<Real, Dim>> ordered_;   // the boxes in order_'s order, copied each step
@@ -173,8 +227,8 @@ private:
 /// About (N / target population)^(1/Dim) segments per group, so that cells hold about the target
 /// number of boxes; changed only when N has moved by more than a quarter, since a new count
 /// forgets every plane.
-template <std::floating_point Real, int Dim>
-void PersistentCutPipeline<Real, Dim>::plan_segments(std::size_t n, const WorldSettings& settings) {
+template <std::floating_point Real, int Dim, std::floating_point Input>
+void PersistentCutPipeline<Real, Dim, Input>::plan_segments(std::size_t n, const WorldSettings& settings) {
     const double cells = static_cast<double>(n) / static_cast<double>(settings.target_cell_population);
     const double ideal = std::clamp(std::pow(cells, 1.0 / Dim), 1.0, double{CutTree<Real, Dim>::kMaxSegments});
     const double current = cuts_.segments();
@@ -183,12 +237,14 @@ void PersistentCutPipeline<Real, Dim>::plan_segments(std::size_t n, const WorldS
     }
 }
 
-template <std::floating_point Real, int Dim>
+template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Report>
-void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, const WorldSettings& settings,
-                                              Report& report, DetectStats& stats) {
-    const auto store_boxes = store.boxes();
+void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, Dim>> store_boxes,
+                                                     std::span<const BoxId> store_ids, const WorldSettings& settings,
+                                                     Report& report, DetectStats& stats) {
     const std::size_t n = store_boxes.size();
+    input_ = store_boxes;
+    retested_ = 0;
     reserve_with_slack(order_, n);
     for (std::size_t slot = listed_; slot < n; ++slot) order_.push_back(static_cast<Slot>(slot));
     listed_ = n;
@@ -206,8 +262,8 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
     const bool cold = cold_ || cuts_.segments() != segments_before;
 
     const auto start = Clock::now();
-    const double cutting = run_levels(store_boxes, store.ids());
-    if (cold) renumber_in_cell_order(store_boxes, store.ids());
+    const double cutting = run_levels(store_boxes, store_ids);
+    if (cold) renumber_in_cell_order(store_boxes, store_ids);
     const std::span<const Box<Real, Dim>> boxes(ordered_);
     const double regrouping = std::chrono::duration<double>(Clock::now() - start).count();
     stats.sort_seconds = cutting;
@@ -239,8 +295,8 @@ void PersistentCutPipeline<Real, Dim>::detect(const BoxStore<Real, Dim>& store, 
 
 /// Copies the boxes in order_'s order and regroups them level by level; returns the seconds
 /// spent cutting.
-template <std::floating_point Real, int Dim>
-double PersistentCutPipeline<Real, Dim>::run_levels(std::span<const Box<Real, Dim>> store_boxes,
+template <std::floating_point Real, int Dim, std::floating_point Input>
+double PersistentCutPipeline<Real, Dim, Input>::run_levels(std::span<const Box<Input, Dim>> store_boxes,
                                                    std::span<const BoxId> store_ids) {
     const std::size_t n = store_boxes.size();
     resize_with_slack(oversized_, n);
@@ -269,8 +325,8 @@ double PersistentCutPipeline<Real, Dim>::run_levels(std::span<const Box<Real, Di
 /// Renumbers the boxes in the order of their home cells (the cell holding their lower corner),
 /// oversized boxes last: order_, the ordered copies, the cell lists and the oversized list
 /// follow. The order a detection leaves behind, without running its levels again.
-template <std::floating_point Real, int Dim>
-void PersistentCutPipeline<Real, Dim>::renumber_in_cell_order(std::span<const Box<Real, Dim>> store_boxes,
+template <std::floating_point Real, int Dim, std::floating_point Input>
+void PersistentCutPipeline<Real, Dim, Input>::renumber_in_cell_order(std::span<const Box<Input, Dim>> store_boxes,
                                                               std::span<const BoxId> store_ids) {
     std::vector<Position>& cells = lists_[cells_list_];
     const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
@@ -306,8 +362,8 @@ void PersistentCutPipeline<Real, Dim>::renumber_in_cell_order(std::span<const Bo
 }
 
 /// Threads: WorldSettings::threads, 0 for as many as OpenMP offers; one without OpenMP.
-template <std::floating_point Real, int Dim>
-void PersistentCutPipeline<Real, Dim>::plan_threads(const WorldSettings& settings) {
+template <std::floating_point Real, int Dim, std::floating_point Input>
+void PersistentCutPipeline<Real, Dim, Input>::plan_threads(const WorldSettings& settings) {
 #ifdef _OPENMP
     threads_ = settings.threads == 0 ? omp_get_max_threads() : static_cast<int>(settings.threads);
 #else
@@ -326,8 +382,8 @@ void PersistentCutPipeline<Real, Dim>::plan_threads(const WorldSettings& setting
 #endif
 }
 
-template <std::floating_point Real, int Dim>
-void PersistentCutPipeline<Real, Dim>::gather_in_order(std::span<const Box<Real, Dim>> store_boxes,
+template <std::floating_point Real, int Dim, std::floating_point Input>
+void PersistentCutPipeline<Real, Dim, Input>::gather_in_order(std::span<const Box<Input, Dim>> store_boxes,
                                                        std::span<const BoxId> store_ids) {
     const std::size_t n = order_.size();
     resize_with_slack(ordered_, n);
@@ -339,10 +395,14 @@ void PersistentCutPipeline<Real, Dim>::gather_in_order(std::span<const Box<Real,
         const auto i = static_cast<std::size_t>(j);
         if (i + ahead < n) {
             __builtin_prefetch(&store_boxes[order_[i + ahead]]);
-            __builtin_prefetch(&store_ids[order_[i + ahead]]);
+            if (!store_ids.empty()) __builtin_prefetch(&store_ids[order_[i + ahead]]);
         }
-        ordered_[i] = store_boxes[order_[i]];
-        ordered_ids_[i] = store_ids[order_[i]];
+        if constexpr (kRounded) {
+            ordered_[i] = held_box<Input, Dim>(store_boxes[order_[i]], origin_);
+        } else {
+            ordered_[i] = store_boxes[order_[i]];
+        }
+        ordered_ids_[i] = store_ids.empty() ? BoxId{order_[i]} : store_ids[order_[i]];
     }
 }
 
@@ -350,9 +410,9 @@ void PersistentCutPipeline<Real, Dim>::gather_in_order(std::span<const Box<Real,
 /// per segment into `count` (k counters). A box spanning more than two segments is noted in
 /// worker.marks (published as oversized once the group's planes are final) and not counted.
 /// Returns the fullest segment's count.
-template <std::floating_point Real, int Dim>
+template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Entries>
-std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::size_t group,
+std::uint32_t PersistentCutPipeline<Real, Dim, Input>::locate_group(int level, std::size_t group,
                                                              const Entries& entries,
                                                              std::span<const Box<Real, Dim>> boxes,
                                                              std::uint32_t* ranges, std::uint32_t* count,
@@ -395,8 +455,8 @@ std::uint32_t PersistentCutPipeline<Real, Dim>::locate_group(int level, std::siz
 }
 
 /// Makes the threads' marks visible as oversized boxes, each once.
-template <std::floating_point Real, int Dim>
-void PersistentCutPipeline<Real, Dim>::publish_marks() {
+template <std::floating_point Real, int Dim, std::floating_point Input>
+void PersistentCutPipeline<Real, Dim, Input>::publish_marks() {
     for (WorkerScratch& worker : workers_) {
         for (const Position position : worker.marks) {
             if (oversized_[position] == kPublished) continue;  // marked in two groups: listed once
@@ -410,8 +470,8 @@ void PersistentCutPipeline<Real, Dim>::publish_marks() {
 /// Level 0: one group (all boxes), so the threads share its entries instead of its groups: each
 /// locates and counts its share, the index array is summed, and each scatters its share to the
 /// offsets that keep the counting sort stable.
-template <std::floating_point Real, int Dim>
-double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::size_t n,
+template <std::floating_point Real, int Dim, std::floating_point Input>
+double PersistentCutPipeline<Real, Dim, Input>::regroup_first_level(std::size_t n,
                                                              std::span<const Box<Real, Dim>> boxes,
                                                              std::vector<Position>& out,
                                                              std::vector<std::uint32_t>& out_begin) {
@@ -487,8 +547,8 @@ double PersistentCutPipeline<Real, Dim>::regroup_first_level(std::size_t n,
 /// Levels 1 and deeper: locate and count group by group (cutting again a group that left its
 /// band), the groups shared among the threads; then register every box that is not oversized
 /// in each segment it touches, by a stable counting sort. Returns the seconds spent cutting.
-template <std::floating_point Real, int Dim>
-double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<const Position> in,
+template <std::floating_point Real, int Dim, std::floating_point Input>
+double PersistentCutPipeline<Real, Dim, Input>::regroup_level(int level, std::span<const Position> in,
                                                        std::span<const std::uint32_t> in_begin,
                                                        std::span<const Box<Real, Dim>> boxes,
                                                        std::vector<Position>& out,
@@ -575,8 +635,8 @@ double PersistentCutPipeline<Real, Dim>::regroup_level(int level, std::span<cons
     return cutting;
 }
 
-template <std::floating_point Real, int Dim>
-CellFloor<Real, Dim> PersistentCutPipeline<Real, Dim>::floor_of_cell(std::size_t cell) const {
+template <std::floating_point Real, int Dim, std::floating_point Input>
+CellFloor<Real, Dim> PersistentCutPipeline<Real, Dim, Input>::floor_of_cell(std::size_t cell) const {
     CellFloor<Real, Dim> floor{};
     const std::uint32_t k = cuts_.segments();
     std::size_t group = cell;
@@ -590,9 +650,9 @@ CellFloor<Real, Dim> PersistentCutPipeline<Real, Dim>::floor_of_cell(std::size_t
 
 /// The cells are checked column by column (a column: the k cells of one group of the deepest
 /// level), in column order, so the report does not depend on the thread count.
-template <std::floating_point Real, int Dim>
+template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Report>
-std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Real, Dim>> boxes,
+std::size_t PersistentCutPipeline<Real, Dim, Input>::check_cells(std::span<const Box<Real, Dim>> boxes,
                                                           Report& report) {
     next_order_.clear();
     reserve_with_slack(next_order_, boxes.size());
@@ -615,11 +675,13 @@ std::size_t PersistentCutPipeline<Real, Dim>::check_cells(std::span<const Box<Re
 /// called detect(), and the hand-over overlaps the work). An item whose pairs outgrow its
 /// buffer's cap (a crowd of identical boxes: billions of pairs) gives up and is run again alone
 /// when its turn comes, straight into the caller's sink, so memory stays bounded.
-template <std::floating_point Real, int Dim>
+template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Report, class Work>
-std::size_t PersistentCutPipeline<Real, Dim>::in_ordered_rounds(std::size_t count, Report& report,
+std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size_t count, Report& report,
                                                                 std::vector<Position>& home, Work&& work) {
-    auto report_ids = [&](Position a, Position b) { report(ordered_ids_[a], ordered_ids_[b]); };
+    auto report_ids = [&](Position a, Position b) {
+        if (confirmed(a, b)) report(ordered_ids_[a], ordered_ids_[b]);
+    };
     std::size_t moves = 0;
     if (threads_ == 1) {
         for (std::size_t item = 0; item < count; ++item) moves += work(item, report_ids, home, nullptr);
@@ -680,6 +742,7 @@ std::size_t PersistentCutPipeline<Real, Dim>::in_ordered_rounds(std::size_t coun
                             block.overflowed = true;
                             return;
                         }
+                        if (!confirmed(x, y)) return;
                         const BoxId u = ordered_ids_[x];
                         const BoxId v = ordered_ids_[y];
                         block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
@@ -694,9 +757,9 @@ std::size_t PersistentCutPipeline<Real, Dim>::in_ordered_rounds(std::size_t coun
 }
 
 /// Checks the k cells of one column in order; stops early once *give_up is set.
-template <std::floating_point Real, int Dim>
+template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Collect>
-std::size_t PersistentCutPipeline<Real, Dim>::check_column(std::size_t column, std::span<const Box<Real, Dim>> boxes,
+std::size_t PersistentCutPipeline<Real, Dim, Input>::check_column(std::size_t column, std::span<const Box<Real, Dim>> boxes,
                                                            CellSweep<Real, Dim>& sweep, Collect& collect,
                                                            std::vector<Position>& home, const bool* give_up) {
     const std::vector<Position>& cells = lists_[cells_list_];
@@ -724,9 +787,9 @@ std::size_t PersistentCutPipeline<Real, Dim>::check_column(std::size_t column, s
 }
 
 /// Calls visit(cell, floor) for every cell whose segments `box` touches on every level.
-template <std::floating_point Real, int Dim>
+template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Visit>
-void PersistentCutPipeline<Real, Dim>::for_each_cell_covering(const Box<Real, Dim>& box, Visit&& visit) const {
+void PersistentCutPipeline<Real, Dim, Input>::for_each_cell_covering(const Box<Real, Dim>& box, Visit&& visit) const {
     const std::uint32_t k = cuts_.segments();
     CellFloor<Real, Dim> floor{};
     auto descend = [&](auto& self, int level, std::size_t group) -> void {
@@ -750,9 +813,9 @@ void PersistentCutPipeline<Real, Dim>::for_each_cell_covering(const Box<Real, Di
 /// under the same lower-corner rule as the cells (so a pair is reported once even when the
 /// other box is registered in several of those cells), and against the oversized boxes after
 /// it in x order by a sweep on x.
-template <std::floating_point Real, int Dim>
+template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Report>
-void PersistentCutPipeline<Real, Dim>::check_oversized(std::span<const Box<Real, Dim>> boxes, Report& report) {
+void PersistentCutPipeline<Real, Dim, Input>::check_oversized(std::span<const Box<Real, Dim>> boxes, Report& report) {
     std::vector<Position> no_home;  // oversized boxes have no home cell
     in_ordered_rounds(oversized_list_.size(), report, no_home,
                       [&](std::size_t index, auto& collect, std::vector<Position>&, const bool* give_up) {
@@ -763,9 +826,9 @@ void PersistentCutPipeline<Real, Dim>::check_oversized(std::span<const Box<Real,
 
 /// Oversized box number `index` (in x order) against the boxes of the cells it covers and
 /// against the oversized boxes after it; stops early once *give_up is set.
-template <std::floating_point Real, int Dim>
+template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Collect>
-void PersistentCutPipeline<Real, Dim>::check_one_oversized(std::size_t index, std::span<const Box<Real, Dim>> boxes,
+void PersistentCutPipeline<Real, Dim, Input>::check_one_oversized(std::size_t index, std::span<const Box<Real, Dim>> boxes,
                                                           Collect& collect, const bool* give_up) const {
     const std::vector<Position>& cells = lists_[cells_list_];
     const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
@@ -788,8 +851,8 @@ void PersistentCutPipeline<Real, Dim>::check_one_oversized(std::size_t index, st
     }
 }
 
-template <std::floating_point Real, int Dim>
-void PersistentCutPipeline<Real, Dim>::check_invariants(std::span<const Box<Real, Dim>> boxes) const {
+template <std::floating_point Real, int Dim, std::floating_point Input>
+void PersistentCutPipeline<Real, Dim, Input>::check_invariants(std::span<const Box<Real, Dim>> boxes) const {
     // Every box that is not oversized is registered in exactly the cells it covers.
     const std::vector<Slot>& cells = lists_[cells_list_];
     const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "box_store.hpp"
+#include "pair_output.hpp"
+#include "settings_check.hpp"
 #include "paper_pipeline.hpp"
 #include "persistent_cut_pipeline.hpp"
 #include "smb/errors.hpp"
@@ -21,56 +23,10 @@
 
 namespace smb::detail {
 
-/// Hands pairs to the caller's sink in chunks of the settings' size: one pair at a time (the
-/// paper's pipeline) or a run of pairs already in (a < b) order (the persistent pipeline, whose
-/// runs go to the sink without another copy where they fill whole chunks).
-class PairOutput {
-public:
-    PairOutput(std::vector<Pair>& chunk, std::size_t chunk_size, const PairSink& sink, std::size_t& count)
-        : chunk_(chunk), chunk_size_(chunk_size), sink_(sink), count_(count) {}
-
-    void operator()(BoxId a, BoxId b) {
-        if (b < a) std::swap(a, b);
-        chunk_.push_back(Pair{a, b});
-        if (chunk_.size() == chunk_size_) send_chunk();
-    }
-
-    void append(std::span<const Pair> ordered) {
-        while (!ordered.empty()) {
-            if (chunk_.empty() && ordered.size() >= chunk_size_) {
-                count_ += chunk_size_;
-                sink_(ordered.first(chunk_size_));
-                ordered = ordered.subspan(chunk_size_);
-                continue;
-            }
-            const std::size_t take = std::min(ordered.size(), chunk_size_ - chunk_.size());
-            chunk_.insert(chunk_.end(), ordered.begin(), ordered.begin() + static_cast<std::ptrdiff_t>(take));
-            ordered = ordered.subspan(take);
-            if (chunk_.size() == chunk_size_) send_chunk();
-        }
-    }
-
-    void flush() {
-        if (!chunk_.empty()) send_chunk();
-    }
-
-private:
-    void send_chunk() {
-        count_ += chunk_.size();
-        sink_(chunk_);
-        chunk_.clear();
-    }
-
-    std::vector<Pair>& chunk_;
-    std::size_t chunk_size_;
-    const PairSink& sink_;
-    std::size_t& count_;
-};
-
 template <std::floating_point Real, int Dim>
 class WorldState {
 public:
-    explicit WorldState(const WorldSettings& settings) : settings_(validated(settings)) {}
+    explicit WorldState(const WorldSettings& settings) : settings_(validated_settings(settings)) {}
     WorldState(const WorldState&) = delete;
     WorldState& operator=(const WorldState&) = delete;
 
@@ -123,21 +79,6 @@ public:
     }
 
 private:
-    static constexpr std::size_t kMaxThreads = 1024;
-
-    static WorldSettings validated(const WorldSettings& settings) {
-        if (settings.target_cell_population == 0)
-            throw ArgumentError("WorldSettings::target_cell_population must be at least 1");
-        if (settings.pair_chunk_size == 0)
-            throw ArgumentError("WorldSettings::pair_chunk_size must be at least 1");
-        if (settings.pipeline != Pipeline::persistent_cuts && settings.pipeline != Pipeline::paper_lists)
-            throw ArgumentError("WorldSettings::pipeline is not a known Pipeline");
-        if (settings.threads > kMaxThreads)
-            throw ArgumentError("WorldSettings::threads must be at most " + std::to_string(kMaxThreads) +
-                                " (0: as many as OpenMP offers), not " + std::to_string(settings.threads));
-        return settings;
-    }
-
     WorldSettings settings_;
     BoxStore<Real, Dim> store_;
     DetectStats stats_;

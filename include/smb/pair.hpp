@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <compare>
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <vector>
 
 namespace smb {
@@ -21,5 +23,9 @@ struct Pair {
 /// Puts pairs in (a, b) order: the order of the pair CSV. detect() itself reports pairs in a
 /// deterministic but unspecified order, so callers who need a canonical list sort it.
 inline void sort_pairs(std::vector<Pair>& pairs) { std::sort(pairs.begin(), pairs.end()); }
+
+/// Receives the pairs of one detection in chunks, so that a caller can consume billions of
+/// pairs without holding them all.
+using PairSink = std::function<void(std::span<const Pair>)>;
 
 }  // namespace smb

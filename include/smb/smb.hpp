@@ -2,6 +2,7 @@
 // Everything a user of smb needs.
 
 #include "smb/box.hpp"
+#include "smb/detector.hpp"
 #include "smb/errors.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"

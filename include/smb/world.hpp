@@ -21,10 +21,6 @@ template <std::floating_point Real, int Dim>
 class WorldState;
 }  // namespace detail
 
-/// Receives the pairs of one detection in chunks, so that a caller can consume billions of
-/// pairs without holding them all.
-using PairSink = std::function<void(std::span<const Pair>)>;
-
 /// A set of moving axis-aligned boxes, each under a caller-chosen BoxId, and the SMB broad
 /// phase over them (Li, Feng & Owen, CMAME 195 (2006) 2252-2269).
 ///

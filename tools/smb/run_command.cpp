@@ -13,6 +13,7 @@
 #include "run_report.hpp"
 #include "smb/workload/reference_grid.hpp"
 #include "smb/workload/world_sync.hpp"
+#include "smb/detector.hpp"
 #include "smb/world.hpp"
 
 namespace smb::cli {
@@ -70,8 +71,9 @@ RunCommand::RunCommand(CLI::App& parent)
         ->capture_default_str();
     app_->add_option("--pipeline", pipeline_,
                      "persistent: the default pipeline (persistent cuts); paper: the paper's "
-                     "lists as written (WorldSettings::pipeline)")
-        ->check(CLI::IsMember({"persistent", "paper"}))
+                     "lists as written (WorldSettings::pipeline); detector: persistent cuts "
+                     "through smb::Detector, over the environment's own array of boxes")
+        ->check(CLI::IsMember({"persistent", "paper", "detector"}))
         ->capture_default_str();
     auto* check_every = app_->add_option("--check-every", check_every_,
                                          "also check every K-th step against the grid reference "
@@ -91,6 +93,12 @@ int RunCommand::run_in() const {
     settings.threads = threads_;
     settings.pipeline = pipeline_ == "paper" ? Pipeline::paper_lists : Pipeline::persistent_cuts;
     World<double, Dim> world(settings);
+    // The detector reads the environment's array itself: no copy, no ids. Its pairs are indices
+    // into that array, turned into ids (outside the timing) only where a step is checked.
+    const bool through_detector = pipeline_ == "detector";
+    WorldSettings detector_settings = settings;
+    detector_settings.pipeline = Pipeline::persistent_cuts;
+    Detector<double, Dim> detector(detector_settings);
 
     RunRecord run;
     run.dimension = Dim;
@@ -114,11 +122,11 @@ int RunCommand::run_in() const {
         if (step > 1) environment.step();
         StepRecord record;
         auto start = Clock::now();
-        workload::apply_changes(environment.changes(), world);
+        if (!through_detector) workload::apply_changes(environment.changes(), world);
         record.world_update_seconds = seconds_since(start);
         start = Clock::now();
         const std::clock_t cpu_start = std::clock();
-        record.stats = world.detect(pairs);
+        record.stats = through_detector ? detector.detect(environment.boxes(), pairs) : world.detect(pairs);
         record.detect_cpu_seconds =
             static_cast<double>(std::clock() - cpu_start) / static_cast<double>(CLOCKS_PER_SEC);
         record.detect_seconds = seconds_since(start);
@@ -126,6 +134,14 @@ int RunCommand::run_in() const {
 
         const bool scheduled = check_every_ > 0 && step % check_every_ == 0;
         if (run.check.enabled && (scheduled || step == steps)) {
+            if (through_detector) {
+                const std::span<const BoxId> ids = environment.ids();
+                for (Pair& pair : pairs) {
+                    const BoxId a = ids[pair.a];
+                    const BoxId b = ids[pair.b];
+                    pair = a < b ? Pair{a, b} : Pair{b, a};
+                }
+            }
             sort_pairs(pairs);
             check_step(environment, pairs, step, run.check);
         }
@@ -133,7 +149,7 @@ int RunCommand::run_in() const {
     }
     progress.finish();
     run.final_boxes = environment.size();
-    run.bytes_held = world.bytes_held();
+    run.bytes_held = through_detector ? detector.bytes_held() : world.bytes_held();
     run.peak_resident_bytes = peak_resident_bytes();
 
     if (json_) {

@@ -1,0 +1,102 @@
+#pragma once
+// The SMB broad phase over an array of boxes the caller keeps: no ids, no copy of the input.
+
+#include <concepts>
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "smb/box.hpp"
+#include "smb/errors.hpp"
+#include "smb/pair.hpp"
+#include "smb/settings.hpp"
+#include "smb/stats.hpp"
+
+namespace smb {
+
+namespace detail {
+template <std::floating_point Real, int Dim>
+class DetectorState;
+}  // namespace detail
+
+/// What a Detector held for its last detection.
+enum class HeldPrecision {
+    none,    ///< nothing detected yet (or no boxes)
+    floats,  ///< floats: the input's own (float input), or double input shifted and rounded
+    exact,   ///< a copy of the double input: floats would not resolve the scene (see Detector)
+};
+
+/// The SMB broad phase for simulations that keep their bodies' boxes in an array of their own:
+/// each detect() takes the whole array, box i being body i, and reports every pair of indices
+/// whose boxes overlap (closed convention, see smb::overlaps), once, with Pair::a < Pair::b.
+///
+/// The detector does not copy the array between calls. What it keeps is what makes the next call
+/// fast: its axial cuts, and an order of the indices that follows the cells. So box i should be
+/// the same body from one call to the next (a body that moved a little); the array may grow or
+/// shrink between calls, and any contents give the exact pairs, only more slowly when the
+/// bodies jumped. Compared with World, a Detector holds about half the memory per box (see
+/// docs/performance.md) and needs no insert/update/remove calls; World suits callers who name
+/// their bodies by ids that come and go.
+///
+/// Precision: for double boxes, the detector holds floats, shifted to the middle of the scene
+/// and rounded to the nearest float, and tests again on the caller's doubles every pair that the floats
+/// cannot settle (boxes within a few floats of touching), so the pairs are exact. When floats
+/// would not resolve the scene (more than 1/8 of the boxes thinner than 2^-14 of the scene's
+/// extent on some axis, or coordinates beyond float range) it holds doubles instead;
+/// last_precision() says which. The choice is made again when the scene outgrows the region it
+/// was made for, or the number of boxes changes by more than a quarter.
+///
+/// Errors: detect() checks every box before it changes anything; a box with NaN, infinity or
+/// min > max throws InvalidBoxError naming its index, and the detector stays as it was.
+/// WorldSettings::pipeline must be Pipeline::persistent_cuts (ArgumentError otherwise).
+///
+/// Determinism and threads: as World (WorldSettings::threads; the sink runs on the calling
+/// thread; the same calls give the same pairs in the same order whatever the thread count).
+/// The array must not change while detect() runs.
+template <std::floating_point Real, int Dim>
+class Detector {
+public:
+    using real_type = Real;
+    using box_type = Box<Real, Dim>;
+    static constexpr int dimension = Dim;
+
+    explicit Detector(const WorldSettings& settings = {});
+    ~Detector();
+    Detector(Detector&&) noexcept;
+    Detector& operator=(Detector&&) noexcept;
+    Detector(const Detector&) = delete;
+    Detector& operator=(const Detector&) = delete;
+
+    /// Reports every overlapping pair of `boxes` into `pairs` (cleared first), box i under id i.
+    /// Throws PairLimitError past settings().max_pairs_held pairs.
+    DetectStats detect(std::span<const box_type> boxes, std::vector<Pair>& pairs);
+    /// Reports every overlapping pair to `sink`, in chunks of settings().pair_chunk_size. An
+    /// exception thrown by the sink ends the detection and propagates; the detector stays valid.
+    DetectStats detect(std::span<const box_type> boxes, const PairSink& sink);
+
+    /// Forgets the cuts and the order, and releases the memory held; keeps the settings.
+    void clear();
+
+    [[nodiscard]] const WorldSettings& settings() const noexcept;
+    /// Statistics of the last detect() call.
+    [[nodiscard]] const DetectStats& last_stats() const noexcept;
+    /// What the last detection held: floats or a copy of the doubles.
+    [[nodiscard]] HeldPrecision last_precision() const noexcept;
+    /// Pairs the held floats could not settle and that were tested again on the input, in the
+    /// last detection.
+    [[nodiscard]] std::size_t last_retested_pairs() const noexcept;
+    /// Heap bytes held by the detector now (its own accounting of its arrays); the caller's
+    /// array is not counted.
+    [[nodiscard]] std::size_t bytes_held() const noexcept;
+
+private:
+    std::unique_ptr<detail::DetectorState<Real, Dim>> state_;
+};
+
+using Detector2f = Detector<float, 2>;
+using Detector2d = Detector<double, 2>;
+using Detector3f = Detector<float, 3>;
+using Detector3d = Detector<double, 3>;
+
+}  // namespace smb

@@ -1,0 +1,66 @@
+#pragma once
+// The boxes a Detector holds for itself: the caller's double boxes as floats, shifted by an
+// origin (the middle of the scene) and rounded to the nearest float. Half the bytes of a double
+// copy, and every pass over them reads half as much memory; exactness is kept by testing again,
+// on the caller's own boxes, every pair the floats cannot settle.
+//
+// Why the floats lose no pair: held(x) = nearest float to fl(x - origin), clamped to the finite
+// floats, never decreases as x grows (each step rounds monotonically). So a.min <= b.max gives
+// held(a.min) <= held(b.max): boxes that overlap hold boxes that overlap. The converse can fail
+// only where a comparison is within rounding, which surely_overlap() detects (see there).
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <concepts>
+#include <cstdint>
+#include <limits>
+
+#include "smb/box.hpp"
+
+namespace smb::detail {
+
+/// The nearest float to `value`, or the largest finite float of its sign beyond their range
+/// (where a plain conversion would be undefined).
+template <std::floating_point Input>
+[[nodiscard]] inline float clamped_float(Input value) noexcept {
+    constexpr auto top = static_cast<Input>(std::numeric_limits<float>::max());
+    return static_cast<float>(std::clamp(value, -top, top));
+}
+
+/// The held copy of `box`: shifted by `origin` and rounded to floats.
+template <std::floating_point Input, int Dim>
+[[nodiscard]] inline Box<float, Dim> held_box(const Box<Input, Dim>& box, const std::array<Input, Dim>& origin) noexcept {
+    Box<float, Dim> held;
+    for (int k = 0; k < Dim; ++k) {
+        held.min[k] = clamped_float(box.min[k] - origin[k]);
+        held.max[k] = clamped_float(box.max[k] - origin[k]);
+    }
+    return held;
+}
+
+/// A key per float that grows by one from each float to the next (and from -0 to +0).
+[[nodiscard]] inline std::int64_t float_step_key(float value) noexcept {
+    const auto bits = std::bit_cast<std::uint32_t>(value);
+    return (bits & 0x80000000U) != 0 ? std::int64_t{0x7FFFFFFF} - (bits & 0x7FFFFFFFU)
+                                     : std::int64_t{0x80000000} + bits;
+}
+
+/// True when held boxes `a` and `b` prove that the boxes they hold overlap. A held coordinate h
+/// of a shifted coordinate v (nearest, or clamped beyond the float range) has
+/// next_down(h) < v < next_up(h). Four steps apart (two would do but for -0 and +0, which are
+/// two steps and one value), next_up(held a.min) <= next_down(held b.max), so shifted a.min <
+/// shifted b.max and, the shift being monotone, a.min <= b.max. Pairs closer than that
+/// (touching, or within a few floats) go to the exact test.
+[[nodiscard]] inline bool surely_below(float low, float high) noexcept {
+    return float_step_key(high) - float_step_key(low) >= 4;
+}
+template <int Dim>
+[[nodiscard]] inline bool surely_overlap(const Box<float, Dim>& a, const Box<float, Dim>& b) noexcept {
+    for (int k = 0; k < Dim; ++k) {
+        if (!surely_below(a.min[k], b.max[k]) || !surely_below(b.min[k], a.max[k])) return false;
+    }
+    return true;
+}
+
+}  // namespace smb::detail

@@ -1,0 +1,60 @@
+#pragma once
+// The pairs of one detection on their way to the caller's sink, in chunks.
+
+#include <algorithm>
+#include <cstddef>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "smb/pair.hpp"
+
+namespace smb::detail {
+
+/// Hands pairs to the caller's sink in chunks of the settings' size: one pair at a time (the
+/// paper's pipeline) or a run of pairs already in (a < b) order (the persistent pipeline, whose
+/// runs go to the sink without another copy where they fill whole chunks).
+class PairOutput {
+public:
+    PairOutput(std::vector<Pair>& chunk, std::size_t chunk_size, const PairSink& sink, std::size_t& count)
+        : chunk_(chunk), chunk_size_(chunk_size), sink_(sink), count_(count) {}
+
+    void operator()(BoxId a, BoxId b) {
+        if (b < a) std::swap(a, b);
+        chunk_.push_back(Pair{a, b});
+        if (chunk_.size() == chunk_size_) send_chunk();
+    }
+
+    void append(std::span<const Pair> ordered) {
+        while (!ordered.empty()) {
+            if (chunk_.empty() && ordered.size() >= chunk_size_) {
+                count_ += chunk_size_;
+                sink_(ordered.first(chunk_size_));
+                ordered = ordered.subspan(chunk_size_);
+                continue;
+            }
+            const std::size_t take = std::min(ordered.size(), chunk_size_ - chunk_.size());
+            chunk_.insert(chunk_.end(), ordered.begin(), ordered.begin() + static_cast<std::ptrdiff_t>(take));
+            ordered = ordered.subspan(take);
+            if (chunk_.size() == chunk_size_) send_chunk();
+        }
+    }
+
+    void flush() {
+        if (!chunk_.empty()) send_chunk();
+    }
+
+private:
+    void send_chunk() {
+        count_ += chunk_.size();
+        sink_(chunk_);
+        chunk_.clear();
+    }
+
+    std::vector<Pair>& chunk_;
+    std::size_t chunk_size_;
+    const PairSink& sink_;
+    std::size_t& count_;
+};
+
+}  // namespace smb::detail
