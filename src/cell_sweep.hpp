@@ -121,9 +121,9 @@ public:
     /// lower intersection corner lies in the cell, and appends to `home` the positions whose own
     /// lower corner does, in x order: the order the next detection starts from. Returns the
     /// insertion-sort moves.
-    template <class Report>
+    template <class Report, class Id>
     std::size_t check(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
-                      std::span<const BoxId> ids, const CellFloor<Real, Dim>& floor, Report& report, std::vector<std::uint32_t>& home) {
+                      std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report, std::vector<std::uint32_t>& home) {
         const std::size_t m = entries.size();
         order_.resize(m);
         std::uint64_t* order = order_.data();
@@ -278,8 +278,9 @@ private:
     // them by exact coordinate and id makes the reported order a function of the boxes alone,
     // so that detecting twice without changes reports the same list. Such runs are rare outside
     // scenes of equal coordinates, where they are short.
+    template <class Id>
     static void order_equal_keys(std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
-                                 std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> ids) {
+                                 std::span<const Box<Real, Dim>> boxes, std::span<const Id> ids) {
         std::size_t run = 0;
         for (std::size_t i = 1; i <= m; ++i) {
             if (i < m && (order[i] >> 32) == (order[run] >> 32)) continue;

@@ -190,7 +190,7 @@ private:
             if (surely_overlap(ordered_[a], ordered_[b])) return true;
             // Counted per thread would be exact too; a relaxed atomic is simpler and rare.
             std::atomic_ref<std::size_t>(retested_).fetch_add(1, std::memory_order_relaxed);
-            return overlaps(input_[ordered_ids_[a]], input_[ordered_ids_[b]]);
+            return overlaps(input_[id_at(a)], input_[id_at(b)]);
         } else {
             (void)a;
             (void)b;
@@ -208,7 +208,14 @@ private:
     std::vector<Slot> order_;       // every slot once: last step's cells, x-sorted within each
     std::vector<Position> next_order_;   // positions of the home boxes, cell by cell
     std::vector<Box<Real, Dim>> ordered_;   // the boxes in order_'s order, copied each step
-    std::vector<BoxId> ordered_ids_;        // and their ids
+    std::vector<BoxId> ordered_ids_;        // and their ids, unless the ids are the slots
+    bool own_ids_ = true;                   // ids were given; else box `slot` has id `slot`
+
+    /// The id of the box at `position`: while a detection runs, order_ still maps positions to
+    /// slots, so slot ids need no array of their own (8 bytes a box less for a Detector).
+    [[nodiscard]] BoxId id_at(Position position) const noexcept {
+        return own_ids_ ? ordered_ids_[position] : BoxId{order_[position]};
+    }
     std::size_t listed_ = 0;        // slots [0, listed_) are in order_; later ones are new
     CutTree<Real, Dim> cuts_;
     std::array<std::vector<Slot>, 2> lists_;             // entries of a level, grouped by segment
@@ -317,7 +324,7 @@ double PersistentCutPipeline<Real, Dim, Input>::run_levels(std::span<const Box<I
     // In x order (ties by id), so that the report and the next order depend on the boxes alone.
     std::sort(oversized_list_.begin(), oversized_list_.end(), [&](Position x, Position y) {
         if (boxes[x].min[0] != boxes[y].min[0]) return boxes[x].min[0] < boxes[y].min[0];
-        return ordered_ids_[x] < ordered_ids_[y];
+        return id_at(x) < id_at(y);
     });
     return cutting;
 }
@@ -387,7 +394,9 @@ void PersistentCutPipeline<Real, Dim, Input>::gather_in_order(std::span<const Bo
                                                        std::span<const BoxId> store_ids) {
     const std::size_t n = order_.size();
     resize_with_slack(ordered_, n);
-    resize_with_slack(ordered_ids_, n);
+    own_ids_ = !store_ids.empty();
+    if (own_ids_) resize_with_slack(ordered_ids_, n);
+    else std::vector<BoxId>().swap(ordered_ids_);
     constexpr std::size_t ahead = 16;
     const auto count = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for num_threads(threads_) schedule(static)
@@ -402,7 +411,7 @@ void PersistentCutPipeline<Real, Dim, Input>::gather_in_order(std::span<const Bo
         } else {
             ordered_[i] = store_boxes[order_[i]];
         }
-        ordered_ids_[i] = store_ids.empty() ? BoxId{order_[i]} : store_ids[order_[i]];
+        if (own_ids_) ordered_ids_[i] = store_ids[order_[i]];
     }
 }
 
@@ -680,7 +689,7 @@ template <class Report, class Work>
 std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size_t count, Report& report,
                                                                 std::vector<Position>& home, Work&& work) {
     auto report_ids = [&](Position a, Position b) {
-        if (confirmed(a, b)) report(ordered_ids_[a], ordered_ids_[b]);
+        if (confirmed(a, b)) report(id_at(a), id_at(b));
     };
     std::size_t moves = 0;
     if (threads_ == 1) {
@@ -743,8 +752,8 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size
                             return;
                         }
                         if (!confirmed(x, y)) return;
-                        const BoxId u = ordered_ids_[x];
-                        const BoxId v = ordered_ids_[y];
+                        const BoxId u = id_at(x);
+                        const BoxId v = id_at(y);
                         block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
                     };
                     block.moves = work(first + static_cast<std::size_t>(b), collect, block.home, &block.overflowed);
@@ -777,11 +786,15 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::check_column(std::size_t co
         if (cell + ahead + 1 < cell_begin.size()) {
             for (std::uint32_t i = cell_begin[cell + ahead]; i < cell_begin[cell + ahead + 1]; ++i) {
                 __builtin_prefetch(&boxes[cells[i]]);
-                __builtin_prefetch(&ordered_ids_[cells[i]]);
+                __builtin_prefetch(own_ids_ ? static_cast<const void*>(&ordered_ids_[cells[i]])
+                                            : static_cast<const void*>(&order_[cells[i]]));
             }
         }
         const std::span<const Position> entries(cells.data() + first, size);
-        moves += sweep.check(entries, boxes, ordered_ids_, floor_of_cell(cell), collect, home);
+        moves += own_ids_ ? sweep.check(entries, boxes, std::span<const BoxId>(ordered_ids_), floor_of_cell(cell),
+                                        collect, home)
+                          : sweep.check(entries, boxes, std::span<const Slot>(order_), floor_of_cell(cell), collect,
+                                        home);
     }
     return moves;
 }

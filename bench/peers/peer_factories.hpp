@@ -13,6 +13,10 @@ namespace smb::bench {
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_world_peer(const WorldSettings& settings);
 
+/// smb::Detector over an array in which each body keeps its index (no ids inside smb).
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const WorldSettings& settings);
+
 /// Every pair tested, O(N^2): the reference on small scenes.
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_brute_force_peer();

@@ -7,6 +7,8 @@ std::vector<PeerInfo> available_peers() {
         {"smb", true, true},
         {"smb_2threads", true, true},
         {"smb_paper", true, true},
+        {"smb_detector", true, true},
+        {"smb_detector_2threads", true, true},
         {"brute_force", true, true},
         {"box_pruning", true, true},
         {"uniform_grid", true, true},
@@ -36,6 +38,12 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
         WorldSettings settings;
         settings.pipeline = Pipeline::paper_lists;
         return make_smb_world_peer<Dim>(settings);
+    }
+    if (name == "smb_detector") return make_smb_detector_peer<Dim>(WorldSettings{});
+    if (name == "smb_detector_2threads") {
+        WorldSettings settings;
+        settings.threads = 2;
+        return make_smb_detector_peer<Dim>(settings);
     }
     if (name == "brute_force") return make_brute_force_peer<Dim>();
     if (name == "box_pruning") return make_box_pruning_peer<Dim>();

@@ -12,6 +12,7 @@
 #include "progress_bar.hpp"
 #include "run_report.hpp"
 #include "smb/workload/reference_grid.hpp"
+#include "smb/workload/swap_remove_mirror.hpp"
 #include "smb/workload/world_sync.hpp"
 #include "smb/detector.hpp"
 #include "smb/world.hpp"
@@ -93,9 +94,11 @@ int RunCommand::run_in() const {
     settings.threads = threads_;
     settings.pipeline = pipeline_ == "paper" ? Pipeline::paper_lists : Pipeline::persistent_cuts;
     World<double, Dim> world(settings);
-    // The detector reads the environment's array itself: no copy, no ids. Its pairs are indices
-    // into that array, turned into ids (outside the timing) only where a step is checked.
+    // The detector reads an array in which each body keeps its index (as an array-based
+    // simulation's would: smb/workload/swap_remove_mirror.hpp); keeping it up is the update's time. Its pairs
+    // are indices into that array, turned into ids (outside the timing) where a step is checked.
     const bool through_detector = pipeline_ == "detector";
+    workload::SwapRemoveMirror<Box<double, Dim>> mirror;
     WorldSettings detector_settings = settings;
     detector_settings.pipeline = Pipeline::persistent_cuts;
     Detector<double, Dim> detector(detector_settings);
@@ -122,11 +125,16 @@ int RunCommand::run_in() const {
         if (step > 1) environment.step();
         StepRecord record;
         auto start = Clock::now();
-        if (!through_detector) workload::apply_changes(environment.changes(), world);
+        if (through_detector) {
+            const auto& changes = environment.changes();
+            mirror.follow(changes.removed_ids, changes.inserted_ids, environment.ids(), environment.boxes());
+        } else {
+            workload::apply_changes(environment.changes(), world);
+        }
         record.world_update_seconds = seconds_since(start);
         start = Clock::now();
         const std::clock_t cpu_start = std::clock();
-        record.stats = through_detector ? detector.detect(environment.boxes(), pairs) : world.detect(pairs);
+        record.stats = through_detector ? detector.detect(mirror.boxes(), pairs) : world.detect(pairs);
         record.detect_cpu_seconds =
             static_cast<double>(std::clock() - cpu_start) / static_cast<double>(CLOCKS_PER_SEC);
         record.detect_seconds = seconds_since(start);
@@ -135,10 +143,9 @@ int RunCommand::run_in() const {
         const bool scheduled = check_every_ > 0 && step % check_every_ == 0;
         if (run.check.enabled && (scheduled || step == steps)) {
             if (through_detector) {
-                const std::span<const BoxId> ids = environment.ids();
                 for (Pair& pair : pairs) {
-                    const BoxId a = ids[pair.a];
-                    const BoxId b = ids[pair.b];
+                    const BoxId a = mirror.id_at(pair.a);
+                    const BoxId b = mirror.id_at(pair.b);
                     pair = a < b ? Pair{a, b} : Pair{b, a};
                 }
             }
