@@ -22,16 +22,7 @@ Detector<Real, Dim>& Detector<Real, Dim>::operator=(Detector&&) noexcept = defau
 template <std::floating_point Real, int Dim>
 DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, std::vector<Pair>& pairs) {
     pairs.clear();
-    const std::size_t limit = state_->settings().max_pairs_held;
-    return state_->detect(boxes, [&pairs, limit](std::span<const Pair> chunk) {
-        if (chunk.size() > limit - pairs.size()) {
-            std::vector<Pair>().swap(pairs);  // give the memory back, not just the contents
-            throw PairLimitError("detect: more than " + std::to_string(limit) +
-                                 " overlapping pairs (WorldSettings::max_pairs_held); use "
-                                 "detect(boxes, sink) to consume them in chunks");
-        }
-        pairs.insert(pairs.end(), chunk.begin(), chunk.end());
-    });
+    return state_->detect(boxes, detail::collecting_sink(pairs, state_->settings().max_pairs_held, "detect(boxes, sink)"));
 }
 
 template <std::floating_point Real, int Dim>

@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cstddef>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "smb/errors.hpp"
 #include "smb/pair.hpp"
 
 namespace smb::detail {
@@ -56,5 +58,20 @@ private:
     const PairSink& sink_;
     std::size_t& count_;
 };
+
+/// The sink behind detect(std::vector<Pair>&): appends every chunk to `pairs`, and past `limit`
+/// pairs gives their memory back and throws PairLimitError, naming `streaming_call` as the way
+/// to take any number of pairs.
+inline PairSink collecting_sink(std::vector<Pair>& pairs, std::size_t limit, std::string streaming_call) {
+    return [&pairs, limit, streaming_call = std::move(streaming_call)](std::span<const Pair> chunk) {
+        if (chunk.size() > limit - pairs.size()) {
+            std::vector<Pair>().swap(pairs);  // give the memory back, not just the contents
+            throw PairLimitError("detect: more than " + std::to_string(limit) +
+                                 " overlapping pairs (WorldSettings::max_pairs_held); use " + streaming_call +
+                                 " to consume them in chunks");
+        }
+        pairs.insert(pairs.end(), chunk.begin(), chunk.end());
+    };
+}
 
 }  // namespace smb::detail

@@ -92,16 +92,7 @@ const WorldSettings& World<Real, Dim>::settings() const noexcept {
 template <std::floating_point Real, int Dim>
 DetectStats World<Real, Dim>::detect(std::vector<Pair>& pairs) {
     pairs.clear();
-    const std::size_t limit = state_->settings().max_pairs_held;
-    return state_->detect([&pairs, limit](std::span<const Pair> chunk) {
-        if (chunk.size() > limit - pairs.size()) {
-            std::vector<Pair>().swap(pairs);  // give the memory back, not just the contents
-            throw PairLimitError("detect: more than " + std::to_string(limit) +
-                                 " overlapping pairs (WorldSettings::max_pairs_held); use "
-                                 "detect(sink) to consume them in chunks");
-        }
-        pairs.insert(pairs.end(), chunk.begin(), chunk.end());
-    });
+    return state_->detect(detail::collecting_sink(pairs, state_->settings().max_pairs_held, "detect(sink)"));
 }
 
 template <std::floating_point Real, int Dim>

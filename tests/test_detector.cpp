@@ -263,6 +263,19 @@ TEST(DetectorSettings, RefusesThePaperPipelineAndBadSettings) {
     EXPECT_THROW(detector.detect(boxes, PairSink{}), ArgumentError);
 }
 
+TEST(DetectorSettings, RefusesToHoldMorePairsThanAllowedAndStreamsThemInstead) {
+    WorldSettings settings;
+    settings.max_pairs_held = 100;
+    Detector3f detector(settings);
+    const std::vector<Box3f> same(200, Box3f{{0, 0, 0}, {1, 1, 1}});  // 19 900 pairs
+    std::vector<Pair> pairs;
+    EXPECT_THROW(detector.detect(same, pairs), PairLimitError);
+    EXPECT_EQ(pairs.capacity(), 0U);
+    std::size_t streamed = 0;
+    detector.detect(same, [&streamed](std::span<const Pair> chunk) { streamed += chunk.size(); });
+    EXPECT_EQ(streamed, 19900U);
+}
+
 // Double boxes held as floats: pairs closer than the floats resolve are settled on the doubles.
 TEST(DetectorPrecision, SettlesOnTheDoublesWhatTheFloatsCannot) {
     Detector3d detector;
