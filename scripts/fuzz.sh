@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer target for a given time:
-#   scripts/fuzz.sh <scene_csv|world_ops> <seconds>
+#   scripts/fuzz.sh <scene_csv|world_ops|detector_ops> <seconds>
 # Configures and builds the fuzz build (clang++, address + undefined-behaviour sanitizers,
 # SMB_BUILD_FUZZERS) in build-fuzz/ (SMB_FUZZ_BUILD_DIR overrides), then fuzzes starting from
 # the committed seeds (fuzz/corpus/<target>) and the regressions (fuzz/regressions/<target>).
@@ -12,7 +12,7 @@ repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$repo_root"
 
 if [[ $# -ne 2 ]]; then
-  echo "usage: scripts/fuzz.sh <scene_csv|world_ops> <seconds>" >&2
+  echo "usage: scripts/fuzz.sh <scene_csv|world_ops|detector_ops> <seconds>" >&2
   exit 2
 fi
 target=$1
@@ -20,7 +20,8 @@ seconds=$2
 case "$target" in
   scene_csv) max_len=4096 ;;
   world_ops) max_len=512 ;;
-  *) echo "fuzz.sh: unknown target '$target' (scene_csv or world_ops)" >&2; exit 2 ;;
+  detector_ops) max_len=512 ;;
+  *) echo "fuzz.sh: unknown target '$target' (scene_csv, world_ops or detector_ops)" >&2; exit 2 ;;
 esac
 
 build_dir=${SMB_FUZZ_BUILD_DIR:-build-fuzz}

@@ -38,7 +38,7 @@ echo "== Short fuzzing (libFuzzer, ASan + UBSan) =="
 fuzz_probe='extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }'
 if command -v clang++ >/dev/null &&
    echo "$fuzz_probe" | clang++ -fsanitize=fuzzer -x c++ - -o /dev/null 2>/dev/null; then
-  for target in scene_csv world_ops; do
+  for target in scene_csv world_ops detector_ops; do
     SMB_FUZZ_BUILD_DIR=${SMB_CI_FUZZ_BUILD_DIR:-build-ci-fuzz} \
     SMB_FUZZ_RUNS=${SMB_FUZZ_RUNS:-40000} \
       bash scripts/fuzz.sh "$target" "${SMB_FUZZ_SECONDS:-180}"

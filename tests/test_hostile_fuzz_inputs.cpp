@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "detector_ops_check.hpp"
 #include "scene_csv_check.hpp"
 #include "world_ops_check.hpp"
 
@@ -53,6 +54,15 @@ TEST(HostileFuzzInputs, WorldOperationsCorpusKeepsEveryPromise) {
     for (const auto& path : paths) {
         const auto bytes = bytes_of(path);
         EXPECT_NO_THROW(fuzz::check_world_operations(bytes.data(), bytes.size())) << path;
+    }
+}
+
+TEST(HostileFuzzInputs, DetectorOperationsCorpusKeepsEveryPromise) {
+    const auto paths = inputs_of("detector_ops");
+    ASSERT_FALSE(paths.empty());
+    for (const auto& path : paths) {
+        const auto bytes = bytes_of(path);
+        EXPECT_NO_THROW(fuzz::check_detector_operations(bytes.data(), bytes.size())) << path;
     }
 }
 
