@@ -1,4 +1,5 @@
-// A consumer of smb: two boxes that share a face must be reported as one overlapping pair.
+// A consumer of smb: two boxes that share a face must be reported as one overlapping pair, by a
+// World (under ids) and by a Detector (over an array, by index).
 
 #include <smb/smb.hpp>
 
@@ -15,6 +16,14 @@ int main() {
         std::cerr << "expected the single pair (10, 20), got " << pairs.size() << " pairs\n";
         return 1;
     }
-    std::cout << "smb " << SMB_VERSION_STRING << ": pair (10, 20) found\n";
+    const std::vector<smb::Box3d> array{smb::Box3d{{5, 5, 5}, {6, 6, 6}}, smb::Box3d{{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}},
+                                        smb::Box3d{{1.0, 0.0, 0.0}, {2.0, 1.0, 1.0}}};
+    smb::Detector3d detector;
+    detector.detect(array, pairs);
+    if (pairs.size() != 1 || pairs[0].a != 1 || pairs[0].b != 2) {
+        std::cerr << "expected the single pair of indices (1, 2), got " << pairs.size() << " pairs\n";
+        return 1;
+    }
+    std::cout << "smb " << SMB_VERSION_STRING << ": pair (10, 20) found, and indices (1, 2)\n";
     return 0;
 }
