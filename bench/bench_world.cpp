@@ -28,13 +28,18 @@ void report(benchmark::State& state, const smb::DetectStats& stats) {
     state.counters["oversized"] = static_cast<double>(stats.oversized_boxes);
 }
 
-/// The paper's environment: args are N and Λ·1e6.
-template <int Dim>
-void paper_step(benchmark::State& state) {
+/// The paper's environment for args N and Λ·1e6.
+smb::workload::EnvironmentParams paper_params(const benchmark::State& state) {
     smb::workload::EnvironmentParams params;
     params.box_count = static_cast<std::size_t>(state.range(0));
     params.update_factor = static_cast<double>(state.range(1)) * 1e-6;
-    smb::workload::DynamicEnvironment<Dim> environment(params);
+    return params;
+}
+
+/// The paper's environment: args are N and Λ·1e6.
+template <int Dim>
+void paper_step(benchmark::State& state) {
+    smb::workload::DynamicEnvironment<Dim> environment(paper_params(state));
     smb::World<double, Dim> world;
     world.insert(environment.ids(), environment.boxes());
     std::vector<smb::Pair> pairs;
@@ -54,10 +59,7 @@ BENCHMARK(paper_step<2>)->ArgNames({"N", "Lambda_e6"})->Args({200000, 1000})
 /// (kept outside the timing, as the simulation's own array would be): args are N and Λ·1e6.
 template <int Dim>
 void paper_step_detector(benchmark::State& state) {
-    smb::workload::EnvironmentParams params;
-    params.box_count = static_cast<std::size_t>(state.range(0));
-    params.update_factor = static_cast<double>(state.range(1)) * 1e-6;
-    smb::workload::DynamicEnvironment<Dim> environment(params);
+    smb::workload::DynamicEnvironment<Dim> environment(paper_params(state));
     smb::workload::SwapRemoveMirror<smb::Box<double, Dim>> mirror;
     auto follow = [&] {
         const auto& changes = environment.changes();

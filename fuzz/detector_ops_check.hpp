@@ -23,6 +23,7 @@ namespace smb::fuzz {
 namespace detector_ops_detail {
 
 using world_ops_detail::broken_promise;
+using world_ops_detail::check_detection;
 using world_ops_detail::ByteReader;
 using world_ops_detail::decode_box;
 using world_ops_detail::decode_coordinate;
@@ -118,61 +119,23 @@ private:
             for (std::size_t b = a + 1; b < boxes_.size(); ++b)
                 if (smb::overlaps(boxes_[a], boxes_[b])) expected.push_back({a, b});
 
-        std::vector<smb::Pair> found;
-        bool over_limit = false;
-        if (through_sink) {
-            detector_.detect(boxes_, [&](std::span<const smb::Pair> chunk) {
-                if (chunk.empty() || chunk.size() > detector_.settings().pair_chunk_size)
-                    broken_promise("a chunk of a wrong size");
-                found.insert(found.end(), chunk.begin(), chunk.end());
-            });
-        } else {
-            try {
-                detector_.detect(boxes_, found);
-            } catch (const smb::PairLimitError&) {
-                over_limit = true;
-            }
-        }
-        const bool should_be_over = !through_sink && expected.size() > detector_.settings().max_pairs_held;
-        if (over_limit != should_be_over) broken_promise("the pair limit was not kept");
-        if (over_limit) return;
-        for (const smb::Pair& pair : found)
-            if (!(pair.a < pair.b)) broken_promise("a pair with a >= b");
-        smb::sort_pairs(found);
-        if (found != expected) broken_promise("the detector's pairs differ from brute force");
+        check_detection(expected, detector_.settings(), through_sink, [&](auto& pairs_or_sink) {
+            detector_.detect(boxes_, pairs_or_sink);
+        });
     }
 
     smb::Detector<Real, Dim> detector_;
     std::vector<BoxT> boxes_;
 };
 
-template <typename Real, int Dim>
-void run_detector(ByteReader& in, const smb::WorldSettings& settings) {
-    DetectorHarness<Real, Dim> harness(settings);
-    harness.run(in);
-}
-
 }  // namespace detector_ops_detail
 
-/// Decodes `data` into a detector type, settings and changes to its array, and checks every
-/// detection; throws std::logic_error at the first broken promise of smb.
+/// Decodes `data` into a detector type, settings (as world operations; one thread: OpenMP's idle
+/// threads spin between inputs and slow the fuzzer tenfold, and tests/test_detector.cpp checks
+/// thread counts against brute force) and changes to its array, and checks every detection;
+/// throws std::logic_error at the first broken promise of smb.
 inline void check_detector_operations(const std::uint8_t* data, std::size_t size) {
-    using namespace detector_ops_detail;
-    ByteReader in(data, size);
-    const std::uint8_t kind = in.byte();
-    smb::WorldSettings settings;
-    settings.target_cell_population = 1 + in.byte() % 32;
-    settings.pair_chunk_size = 1 + in.byte() % 8;
-    // One thread: OpenMP's idle threads spin between inputs and slow the fuzzer tenfold; the
-    // thread counts are checked against brute force by tests/test_detector.cpp.
-    const std::uint8_t limit = in.byte();
-    if (limit < 64) settings.max_pairs_held = limit;
-    switch (kind % 4) {
-        case 0: run_detector<float, 2>(in, settings); break;
-        case 1: run_detector<double, 2>(in, settings); break;
-        case 2: run_detector<float, 3>(in, settings); break;
-        default: run_detector<double, 3>(in, settings); break;
-    }
+    world_ops_detail::run_decoded<detector_ops_detail::DetectorHarness>(data, size);
 }
 
 }  // namespace smb::fuzz

@@ -125,6 +125,35 @@ inline smb::BoxId decode_id(ByteReader& in) {
     return value % kIdRange;
 }
 
+/// One detection, into a vector or through a sink (`detect` is called with either), checked
+/// against `expected` (brute force, sorted): chunk sizes, the pair limit, a < b, the pairs.
+template <typename Detect>
+void check_detection(const std::vector<smb::Pair>& expected, const smb::WorldSettings& settings, bool through_sink,
+                     Detect detect) {
+    std::vector<smb::Pair> found;
+    bool over_limit = false;
+    if (through_sink) {
+        smb::PairSink sink = [&](std::span<const smb::Pair> chunk) {
+            if (chunk.empty() || chunk.size() > settings.pair_chunk_size) broken_promise("a chunk of a wrong size");
+            found.insert(found.end(), chunk.begin(), chunk.end());
+        };
+        detect(sink);
+    } else {
+        try {
+            detect(found);
+        } catch (const smb::PairLimitError&) {
+            over_limit = true;
+        }
+    }
+    const bool should_be_over = !through_sink && expected.size() > settings.max_pairs_held;
+    if (over_limit != should_be_over) broken_promise("the pair limit was not kept");
+    if (over_limit) return;
+    for (const smb::Pair& pair : found)
+        if (!(pair.a < pair.b)) broken_promise("a pair with a >= b");
+    smb::sort_pairs(found);
+    if (found != expected) broken_promise("the pairs differ from brute force");
+}
+
 /// Which rejections a call may legitimately give, as bits.
 enum Rejection : unsigned {
     kNone = 0,
@@ -345,46 +374,19 @@ private:
             for (auto b = std::next(a); b != model_.end(); ++b)
                 if (smb::overlaps(a->second, b->second)) expected.push_back({a->first, b->first});
 
-        std::vector<smb::Pair> found;
-        bool over_limit = false;
-        if (through_sink) {
-            world_.detect([&](std::span<const smb::Pair> chunk) {
-                if (chunk.empty() || chunk.size() > world_.settings().pair_chunk_size)
-                    broken_promise("a chunk of a wrong size");
-                found.insert(found.end(), chunk.begin(), chunk.end());
-            });
-        } else {
-            try {
-                world_.detect(found);
-            } catch (const smb::PairLimitError&) {
-                over_limit = true;
-            }
-        }
-        const bool should_be_over = !through_sink && expected.size() > world_.settings().max_pairs_held;
-        if (over_limit != should_be_over) broken_promise("the pair limit was not kept");
-        if (over_limit) return;
-        for (const smb::Pair& pair : found)
-            if (!(pair.a < pair.b)) broken_promise("a pair with a >= b");
-        smb::sort_pairs(found);
-        if (found != expected) broken_promise("the pairs differ from brute force");
+        check_detection(expected, world_.settings(), through_sink, [&](auto& pairs_or_sink) {
+            world_.detect(pairs_or_sink);
+        });
     }
 
     World world_;
     Model model_;
 };
 
-template <typename Real, int Dim>
-void run_world(ByteReader& in, const smb::WorldSettings& settings) {
-    Harness<Real, Dim> harness(settings);
-    harness.run(in);
-}
-
-}  // namespace world_ops_detail
-
-/// Decodes `data` into a world, settings and operations and checks every operation; throws
-/// std::logic_error at the first broken promise of smb.
-inline void check_world_operations(const std::uint8_t* data, std::size_t size) {
-    using namespace world_ops_detail;
+/// Decodes what every operations input starts with — the type (2D/3D, float/double) and the
+/// settings (cell population, chunk size, pair limit) — and runs Checker<Real, Dim> on the rest.
+template <template <typename, int> class Checker>
+void run_decoded(const std::uint8_t* data, std::size_t size) {
     ByteReader in(data, size);
     const std::uint8_t kind = in.byte();
     smb::WorldSettings settings;
@@ -393,11 +395,19 @@ inline void check_world_operations(const std::uint8_t* data, std::size_t size) {
     const std::uint8_t limit = in.byte();
     if (limit < 64) settings.max_pairs_held = limit;
     switch (kind % 4) {
-        case 0: run_world<float, 2>(in, settings); break;
-        case 1: run_world<double, 2>(in, settings); break;
-        case 2: run_world<float, 3>(in, settings); break;
-        default: run_world<double, 3>(in, settings); break;
+        case 0: Checker<float, 2>(settings).run(in); break;
+        case 1: Checker<double, 2>(settings).run(in); break;
+        case 2: Checker<float, 3>(settings).run(in); break;
+        default: Checker<double, 3>(settings).run(in); break;
     }
+}
+
+}  // namespace world_ops_detail
+
+/// Decodes `data` into a world, settings and operations and checks every operation; throws
+/// std::logic_error at the first broken promise of smb.
+inline void check_world_operations(const std::uint8_t* data, std::size_t size) {
+    world_ops_detail::run_decoded<world_ops_detail::Harness>(data, size);
 }
 
 }  // namespace smb::fuzz

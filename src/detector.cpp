@@ -1,5 +1,6 @@
 #include "smb/detector.hpp"
 
+#include <functional>
 #include <string>
 
 #include "detector_state.hpp"
@@ -22,7 +23,8 @@ Detector<Real, Dim>& Detector<Real, Dim>::operator=(Detector&&) noexcept = defau
 template <std::floating_point Real, int Dim>
 DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, std::vector<Pair>& pairs) {
     pairs.clear();
-    return state_->detect(boxes, detail::collecting_sink(pairs, state_->settings().max_pairs_held, "detect(boxes, sink)"));
+    const detail::PairCollector collector{pairs, state_->settings().max_pairs_held, "detect(boxes, sink)"};
+    return state_->detect(boxes, std::cref(collector));
 }
 
 template <std::floating_point Real, int Dim>

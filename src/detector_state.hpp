@@ -33,7 +33,7 @@ public:
     const WorldSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
     HeldPrecision last_precision() const noexcept { return precision_; }
-    std::size_t last_retested_pairs() const noexcept { return retested_; }
+    std::size_t last_retested_pairs() const noexcept { return uses_rounded() ? rounded_.retested() : 0; }
 
     void clear() {
         exact_ = ExactPipeline();
@@ -41,7 +41,6 @@ public:
         std::vector<Pair>().swap(chunk_);
         judged_ = false;
         precision_ = HeldPrecision::none;
-        retested_ = 0;
         stats_ = {};
     }
 
@@ -57,10 +56,7 @@ public:
         }
         stats.update_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
-        chunk_.clear();
-        chunk_.reserve(settings_.pair_chunk_size);
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
-        retested_ = 0;
         if (boxes.empty()) {
             exact_.forget_slots_from(0);
             exact_.detect(boxes, {}, settings_, output, stats);
@@ -70,7 +66,6 @@ public:
         } else if (uses_rounded()) {
             rounded_.forget_slots_from(boxes.size());
             rounded_.detect(boxes, {}, settings_, output, stats);
-            retested_ = rounded_.retested();
         } else {
             exact_.forget_slots_from(boxes.size());
             exact_.detect(boxes, {}, settings_, output, stats);
@@ -133,7 +128,6 @@ private:
     std::size_t judged_boxes_ = 0;
     std::size_t since_judged_ = 0;
     HeldPrecision precision_ = HeldPrecision::none;
-    std::size_t retested_ = 0;
     DetectStats stats_;
     std::vector<Pair> chunk_;
 };

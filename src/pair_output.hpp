@@ -18,8 +18,12 @@ namespace smb::detail {
 /// runs go to the sink without another copy where they fill whole chunks).
 class PairOutput {
 public:
+    /// `chunk` is the caller's buffer, kept between detections so that none allocates it again.
     PairOutput(std::vector<Pair>& chunk, std::size_t chunk_size, const PairSink& sink, std::size_t& count)
-        : chunk_(chunk), chunk_size_(chunk_size), sink_(sink), count_(count) {}
+        : chunk_(chunk), chunk_size_(chunk_size), sink_(sink), count_(count) {
+        chunk_.clear();
+        chunk_.reserve(chunk_size_);
+    }
 
     void operator()(BoxId a, BoxId b) {
         if (b < a) std::swap(a, b);
@@ -61,9 +65,14 @@ private:
 
 /// The sink behind detect(std::vector<Pair>&): appends every chunk to `pairs`, and past `limit`
 /// pairs gives their memory back and throws PairLimitError, naming `streaming_call` as the way
-/// to take any number of pairs.
-inline PairSink collecting_sink(std::vector<Pair>& pairs, std::size_t limit, std::string streaming_call) {
-    return [&pairs, limit, streaming_call = std::move(streaming_call)](std::span<const Pair> chunk) {
+/// to take any number of pairs. Handed over as std::cref(collector), so that the PairSink holds
+/// a reference and allocates nothing on a detection.
+struct PairCollector {
+    std::vector<Pair>& pairs;
+    std::size_t limit;
+    const char* streaming_call;
+
+    void operator()(std::span<const Pair> chunk) const {
         if (chunk.size() > limit - pairs.size()) {
             std::vector<Pair>().swap(pairs);  // give the memory back, not just the contents
             throw PairLimitError("detect: more than " + std::to_string(limit) +
@@ -71,7 +80,7 @@ inline PairSink collecting_sink(std::vector<Pair>& pairs, std::size_t limit, std
                                  " to consume them in chunks");
         }
         pairs.insert(pairs.end(), chunk.begin(), chunk.end());
-    };
-}
+    }
+};
 
 }  // namespace smb::detail

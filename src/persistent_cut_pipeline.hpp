@@ -76,7 +76,7 @@ public:
 
     /// The same over boxes the caller keeps: box `slot` of `input` under id ids[slot], or under
     /// id `slot` where `ids` is empty. Where the pipeline holds floats of double input, the held
-    /// boxes are shifted by origin() and rounded (held_box.hpp), and each pair they
+    /// boxes are shifted by set_origin()'s origin and rounded (held_box.hpp), and each pair they
     /// cannot settle is tested again on `input`.
     template <class Report>
     void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const WorldSettings& settings,
@@ -88,7 +88,6 @@ public:
         cuts_.forget();
         cold_ = true;
     }
-    [[nodiscard]] const std::array<Input, Dim>& origin() const noexcept { return origin_; }
 
     /// Pairs that the held floats could not settle, tested again on the input, in the last
     /// detection (rounded input only).

@@ -1,5 +1,6 @@
 #include "smb/world.hpp"
 
+#include <functional>
 #include <string>
 #include <utility>
 
@@ -92,7 +93,8 @@ const WorldSettings& World<Real, Dim>::settings() const noexcept {
 template <std::floating_point Real, int Dim>
 DetectStats World<Real, Dim>::detect(std::vector<Pair>& pairs) {
     pairs.clear();
-    return state_->detect(detail::collecting_sink(pairs, state_->settings().max_pairs_held, "detect(sink)"));
+    const detail::PairCollector collector{pairs, state_->settings().max_pairs_held, "detect(sink)"};
+    return state_->detect(std::cref(collector));
 }
 
 template <std::floating_point Real, int Dim>

@@ -56,8 +56,6 @@ public:
         stats.boxes = store_.slot_count();
         stats.update_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
-        chunk_.clear();
-        chunk_.reserve(settings_.pair_chunk_size);
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
         if (settings_.pipeline == Pipeline::paper_lists) {
             auto report_slots = [&](Slot a, Slot b) { output(store_.id_at(a), store_.id_at(b)); };
