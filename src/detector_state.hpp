@@ -13,6 +13,7 @@
 #include "persistent_cut_pipeline.hpp"
 #include "scene_bounds.hpp"
 #include "settings_check.hpp"
+#include "skin_list.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
 #include "smb/settings.hpp"
@@ -33,11 +34,14 @@ public:
     const WorldSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
     HeldPrecision last_precision() const noexcept { return precision_; }
-    std::size_t last_retested_pairs() const noexcept { return uses_rounded() ? rounded_.retested() : 0; }
+    std::size_t last_retested_pairs() const noexcept { return retested_; }
 
     void clear() {
         exact_ = ExactPipeline();
         rounded_ = RoundedPipeline();
+        skin_.clear();
+        skin_pause_ = 0;
+        retested_ = 0;
         std::vector<Pair>().swap(chunk_);
         judged_ = false;
         precision_ = HeldPrecision::none;
@@ -51,24 +55,30 @@ public:
         stats.boxes = boxes.size();
         if (!boxes.empty()) {
             const SceneBounds<Real, Dim> bounds = checked_bounds(boxes);  // throws before any change
+            bounds_ = bounds;
             if constexpr (kMayRound) choose_precision(boxes, bounds);
             else precision_ = HeldPrecision::floats;
         }
         stats.update_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
+        retested_ = 0;
         if (boxes.empty()) {
             exact_.forget_slots_from(0);
             exact_.detect(boxes, {}, settings_, output, stats);
             rounded_ = RoundedPipeline();
+            skin_.clear();
             precision_ = HeldPrecision::none;
             judged_ = false;
-        } else if (uses_rounded()) {
-            rounded_.forget_slots_from(boxes.size());
-            rounded_.detect(boxes, {}, settings_, output, stats);
-        } else {
-            exact_.forget_slots_from(boxes.size());
-            exact_.detect(boxes, {}, settings_, output, stats);
+        } else if (!detected_with_skin(boxes, bounds_, output, stats)) {
+            if (uses_rounded()) {
+                rounded_.forget_slots_from(boxes.size());
+                rounded_.detect(boxes, {}, settings_, output, stats);
+                if constexpr (kMayRound) retested_ = rounded_.retested();
+            } else {
+                exact_.forget_slots_from(boxes.size());
+                exact_.detect(boxes, {}, settings_, output, stats);
+            }
         }
         output.flush();
         stats.bytes_held = bytes_held();
@@ -78,7 +88,8 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return sizeof(*this) + exact_.bytes_held() + rounded_.bytes_held() + chunk_.capacity() * sizeof(Pair);
+        return sizeof(*this) + exact_.bytes_held() + rounded_.bytes_held() + skin_.bytes_held() +
+               chunk_.capacity() * sizeof(Pair);
     }
 
 private:
@@ -86,6 +97,32 @@ private:
     static constexpr bool kMayRound = !std::is_same_v<Real, float>;
     using ExactPipeline = PersistentCutPipeline<Real, Dim, Real>;
     using RoundedPipeline = std::conditional_t<kMayRound, PersistentCutPipeline<float, Dim, Real>, ExactPipeline>;
+
+    /// With a skin, on floats (the input's own, or double input that floats resolve): the skin
+    /// list detects, and the pipelines give their memory back. When its candidates outgrow it
+    /// (a skin far too wide for the scene), it steps aside for kSkinPause detections.
+    bool detected_with_skin(std::span<const Box<Real, Dim>> boxes, const SceneBounds<Real, Dim>& bounds,
+                            PairOutput& output, DetectStats& stats) {
+        if (settings_.skin == 0 || precision_ != HeldPrecision::floats) {
+            skin_.clear();
+            return false;
+        }
+        if (skin_pause_ > 0) {
+            --skin_pause_;
+            return false;
+        }
+        std::array<Real, Dim> origin{};
+        if constexpr (kMayRound) origin = judgement_.origin;
+        if (!skin_.detect(boxes, origin, bounds.lo, bounds.hi, settings_.skin, settings_, output, stats)) {
+            skin_pause_ = kSkinPause;
+            return false;
+        }
+        retested_ = skin_.retested();
+        exact_ = ExactPipeline();
+        rounded_ = RoundedPipeline();
+        if constexpr (kMayRound) rounded_.set_origin(judgement_.origin);
+        return true;
+    }
 
     [[nodiscard]] bool uses_rounded() const noexcept {
         return kMayRound && precision_ == HeldPrecision::floats;
@@ -119,10 +156,15 @@ private:
     }
 
     static constexpr std::size_t kJudgeEvery = 64;
+    static constexpr std::size_t kSkinPause = 64;
 
     WorldSettings settings_;
     ExactPipeline exact_;
     RoundedPipeline rounded_;
+    SkinList<Real, Dim> skin_;
+    SceneBounds<Real, Dim> bounds_;  // of the detection under way
+    std::size_t skin_pause_ = 0;
+    std::size_t retested_ = 0;
     FloatResolution<Real, Dim> judgement_;
     bool judged_ = false;
     std::size_t judged_boxes_ = 0;

@@ -33,6 +33,7 @@
 #include "cut_tree.hpp"
 #include "growth.hpp"
 #include "held_box.hpp"
+#include "prefetch.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
@@ -82,12 +83,22 @@ public:
     void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const WorldSettings& settings,
                 Report& report, DetectStats& stats);
 
+    /// The order the last detection left: every slot once, cell by cell.
+    [[nodiscard]] std::span<const Slot> order() const noexcept { return order_; }
+
     /// Where held coordinates start from (rounded input only); a new origin forgets every plane.
     void set_origin(const std::array<Input, Dim>& origin) {
         origin_ = origin;
         cuts_.forget();
         cold_ = true;
     }
+
+    /// Calls visit(slot) once for every box of the last detection whose held box overlaps `query`
+    /// (closed), through the cells that `query` covers and the oversized boxes; valid until the
+    /// next detection or change. The skin list (skin_list.hpp) finds the neighbours of a box that
+    /// left its skin this way, without a detection of its own.
+    template <class Visit>
+    void for_each_held_overlapping(const Box<Real, Dim>& query, Visit&& visit) const;
 
     /// Pairs that the held floats could not settle, tested again on the input, in the last
     /// detection (rounded input only).
@@ -402,7 +413,7 @@ void PersistentCutPipeline<Real, Dim, Input>::gather_in_order(std::span<const Bo
     for (std::ptrdiff_t j = 0; j < count; ++j) {
         const auto i = static_cast<std::size_t>(j);
         if (i + ahead < n) {
-            __builtin_prefetch(&store_boxes[order_[i + ahead]]);
+            prefetch_whole(&store_boxes[order_[i + ahead]]);
             if (!store_ids.empty()) __builtin_prefetch(&store_ids[order_[i + ahead]]);
         }
         if constexpr (kRounded) {
@@ -860,6 +871,33 @@ void PersistentCutPipeline<Real, Dim, Input>::check_one_oversized(std::size_t in
     });
     for (std::size_t j = index + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
         if (overlaps(a, boxes[sorted[j]])) collect(big, sorted[j]);
+    }
+}
+
+/// After detect(), next_order_ holds the order the cells and ordered_ were built on: position
+/// to slot. A box registered in several cells the query covers is visited by the cell holding the
+/// lower corner of the two boxes' intersection only, as in check_one_oversized().
+template <std::floating_point Real, int Dim, std::floating_point Input>
+template <class Visit>
+void PersistentCutPipeline<Real, Dim, Input>::for_each_held_overlapping(const Box<Real, Dim>& query,
+                                                                        Visit&& visit) const {
+    if (cuts_.segments() == 0 || ordered_.empty()) return;
+    const std::vector<Position>& cells = lists_[cells_list_];
+    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    const std::vector<Slot>& slot_at = next_order_;
+    for_each_cell_covering(query, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
+        for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
+            const Box<Real, Dim>& held = ordered_[cells[i]];
+            if (!overlaps(query, held)) continue;
+            bool owned = true;
+            for (int axis = 0; axis < Dim; ++axis)
+                owned = owned && (query.min[axis] >= floor[axis] || held.min[axis] >= floor[axis]);
+            if (owned) visit(slot_at[cells[i]]);
+        }
+    });
+    for (const Position big : oversized_list_) {
+        if (ordered_[big].min[0] > query.max[0]) break;  // in x order (run_levels())
+        if (overlaps(query, ordered_[big])) visit(slot_at[big]);
     }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The one check of WorldSettings that World and Detector share.
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -21,6 +22,8 @@ inline constexpr std::size_t kMaxThreads = 1024;
     if (settings.threads > kMaxThreads)
         throw ArgumentError("WorldSettings::threads must be at most " + std::to_string(kMaxThreads) +
                             " (0: as many as OpenMP offers), not " + std::to_string(settings.threads));
+    if (!(settings.skin >= 0) || !std::isfinite(settings.skin))
+        throw ArgumentError("WorldSettings::skin must be finite and at least 0");
     return settings;
 }
 

@@ -26,7 +26,11 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class WorldState {
 public:
-    explicit WorldState(const WorldSettings& settings) : settings_(validated_settings(settings)) {}
+    explicit WorldState(const WorldSettings& settings) : settings_(validated_settings(settings)) {
+        if (settings_.skin != 0)
+            throw ArgumentError("WorldSettings::skin is a Detector setting: a World takes 0, not " +
+                                std::to_string(settings_.skin));
+    }
     WorldState(const WorldState&) = delete;
     WorldState& operator=(const WorldState&) = delete;
 

@@ -9,6 +9,7 @@ std::vector<PeerInfo> available_peers() {
         {"smb_paper", true, true},
         {"smb_detector", true, true},
         {"smb_detector_2threads", true, true},
+        {"smb_detector_skin", true, true},
         {"brute_force", true, true},
         {"box_pruning", true, true},
         {"uniform_grid", true, true},
@@ -43,6 +44,13 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
     if (name == "smb_detector_2threads") {
         WorldSettings settings;
         settings.threads = 2;
+        return make_smb_detector_peer<Dim>(settings);
+    }
+    if (name == "smb_detector_skin") {
+        // Box2D's b2_aabbMargin (0.1): the same fattening as the tree peer's, on scenes whose
+        // largest box side is 1.
+        WorldSettings settings;
+        settings.skin = 0.1;
         return make_smb_detector_peer<Dim>(settings);
     }
     if (name == "brute_force") return make_brute_force_peer<Dim>();

@@ -13,6 +13,13 @@ struct DetectStats {
     std::size_t sort_moves = 0;       ///< items moved by the insertion/diminishing increment sorts
     std::size_t bytes_held = 0;       ///< heap bytes the world holds after the call
 
+    /// Detector with a skin (WorldSettings::skin): candidate pairs kept after this detection,
+    /// boxes that left their fat box (or arrived) and found new candidates, and whether the
+    /// candidates were rebuilt from scratch by the axial cuts.
+    std::size_t skin_candidates = 0;
+    std::size_t skin_refreshed = 0;
+    bool skin_rebuilt = false;
+
     double update_seconds = 0;         ///< applying insertions and removals to the lists
     /// Sorting: DIS on every level (Pipeline::paper_lists); selecting the quantiles of the
     /// groups cut again this step (Pipeline::persistent_cuts, zero in most steps).

@@ -76,6 +76,11 @@ RunCommand::RunCommand(CLI::App& parent)
                      "through smb::Detector, over the environment's own array of boxes")
         ->check(CLI::IsMember({"persistent", "paper", "detector"}))
         ->capture_default_str();
+    app_->add_option("--skin", skin_,
+                     "detector only: grow every box by this much on each side and keep the "
+                     "pairs of grown boxes from step to step (WorldSettings::skin; 0: off)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     auto* check_every = app_->add_option("--check-every", check_every_,
                                          "also check every K-th step against the grid reference "
                                          "(the last step is always checked)");
@@ -84,7 +89,10 @@ RunCommand::RunCommand(CLI::App& parent)
     app_->add_flag("--no-progress", no_progress_, "never draw the progress bar");
 }
 
-int RunCommand::run() const { return environment_.dimension == 2 ? run_in<2>() : run_in<3>(); }
+int RunCommand::run() const {
+    if (skin_ > 0 && pipeline_ != "detector") throw CLI::ValidationError("--skin", "needs --pipeline detector");
+    return environment_.dimension == 2 ? run_in<2>() : run_in<3>();
+}
 
 template <int Dim>
 int RunCommand::run_in() const {
@@ -101,6 +109,7 @@ int RunCommand::run_in() const {
     workload::SwapRemoveMirror<Box<double, Dim>> mirror;
     WorldSettings detector_settings = settings;
     detector_settings.pipeline = Pipeline::persistent_cuts;
+    detector_settings.skin = skin_;
     Detector<double, Dim> detector(detector_settings);
 
     RunRecord run;
@@ -113,6 +122,7 @@ int RunCommand::run_in() const {
     run.seed = environment_.seed;
     run.target_cell_population = target_cell_population_;
     run.pipeline = pipeline_;
+    run.skin = skin_;
     run.threads = settings.pipeline == Pipeline::paper_lists || !openmp_enabled() ? 1
                   : threads_ == 0 ? std::thread::hardware_concurrency()
                                   : threads_;

@@ -63,6 +63,8 @@ const StepQuantity box_count = [](const StepRecord& s) {
 const StepQuantity sort_time = [](const StepRecord& s) { return s.stats.sort_seconds; };
 const StepQuantity cut_time = [](const StepRecord& s) { return s.stats.cut_regroup_seconds; };
 const StepQuantity check_time = [](const StepRecord& s) { return s.stats.check_seconds; };
+const StepQuantity skin_candidates = [](const StepRecord& s) { return static_cast<double>(s.stats.skin_candidates); };
+const StepQuantity skin_refreshed = [](const StepRecord& s) { return static_cast<double>(s.stats.skin_refreshed); };
 const StepQuantity list_update_time = [](const StepRecord& s) { return s.stats.update_seconds; };
 
 }  // namespace
@@ -90,6 +92,13 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
                                             duration_text(median_after_build(run, sort_time)),
                                             duration_text(median_after_build(run, cut_time)),
                                             duration_text(median_after_build(run, check_time))));
+        if (run.skin > 0) {
+            const auto rebuilt = static_cast<std::size_t>(
+                std::count_if(run.steps.begin() + 1, run.steps.end(), [](const StepRecord& s) { return s.stats.skin_rebuilt; }));
+            line("skin", fmt::format("{:g}: rebuilt in {} of {} steps; median {:.0f} candidates, {:.0f} boxes refreshed",
+                                     run.skin, rebuilt, run.steps.size() - 1, median_after_build(run, skin_candidates),
+                                     median_after_build(run, skin_refreshed)));
+        }
         line("world update (median)",
              duration_text(median_after_build(run, world_update_time)) + " in the batch calls");
         line("pairs per step",
@@ -151,6 +160,14 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     summary["target_cell_population"] = run.target_cell_population;
     summary["pipeline"] = run.pipeline;
     summary["threads"] = run.threads;
+    summary["skin"] = run.skin;
+    if (run.skin > 0 && has_later_steps) {
+        const auto rebuilt = std::count_if(run.steps.begin() + 1, run.steps.end(),
+                                           [](const StepRecord& s) { return s.stats.skin_rebuilt; });
+        summary["skin_steps"] = {{"rebuilt", rebuilt},
+                                 {"candidates_median", median_after_build(run, skin_candidates)},
+                                 {"refreshed_median", median_after_build(run, skin_refreshed)}};
+    }
     summary["build_seconds"] =
         run.steps.empty() ? json(nullptr) : json(run.steps.front().detect_seconds);
     summary["detect_seconds"] = spread_json(detect_time);

@@ -1,0 +1,439 @@
+#pragma once
+// The skin list (a Verlet list, in the words of molecular dynamics and DEM codes): each box is
+// held inside a fat box, grown by the skin on every side, and the pairs of fat boxes that overlap
+// are kept as candidates from one detection to the next. While every box stays inside its fat
+// box, the overlapping pairs are among the candidates, so a detection is one pass that checks
+// each box against its fat box and one exact test per candidate: no cut, no regrouping, no sort.
+//
+// A box that left its fat box (or is new, or came back after the array shrank) gets a new fat
+// box, loses its candidates, and finds new ones: the boxes whose fat boxes overlap its new one,
+// through the cells of the last rebuild (PersistentCutPipeline::for_each_held_overlapping) for
+// the boxes that have kept their fat box since, and by a direct test against the few that have
+// not (the moved list). When that list grows past a share of N, everything is rebuilt: the
+// persistent-cut pipeline detects the pairs of the fat boxes, and those are the new candidates.
+//
+// Why no pair is lost: every box lies inside its fat box (checked each detection, on the held
+// floats, whose rounding never reverses an order: held_box.hpp), so two boxes that overlap have
+// fat boxes that overlap, and every such pair is a candidate; each candidate is kept once.
+//
+// Positions: the boxes are held in the cell order the rebuild left (slot_of_), so that a
+// candidate's two boxes lie close together in held_ and the pass over the candidates reads memory
+// almost in order. The caller's array is read once per detection, in that order.
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "growth.hpp"
+#include "held_box.hpp"
+#include "id_index.hpp"
+#include "persistent_cut_pipeline.hpp"
+#include "prefetch.hpp"
+#include "smb/box.hpp"
+#include "smb/pair.hpp"
+#include "smb/settings.hpp"
+#include "smb/stats.hpp"
+
+namespace smb::detail {
+
+/// `value` rounded down (or up) to a float, clamped to the finite floats: the fat box's ends,
+/// so that it always contains the held box it was grown from.
+[[nodiscard]] inline float float_below(double value) noexcept {
+    constexpr double top = std::numeric_limits<float>::max();
+    const double clamped = std::clamp(value, -top, top);
+    auto rounded = static_cast<float>(clamped);
+    if (static_cast<double>(rounded) > clamped) rounded = std::nextafter(rounded, -std::numeric_limits<float>::max());
+    return rounded;
+}
+[[nodiscard]] inline float float_above(double value) noexcept { return -float_below(-value); }
+
+template <std::floating_point Input, int Dim>
+class SkinList {
+public:
+    using Held = Box<float, Dim>;
+
+    /// Reports every overlapping pair of `input` (box i under id i) to report(i, j). `origin`:
+    /// where held coordinates start (held_box.hpp; zero for float input). Returns false, having
+    /// reported nothing and released its memory, when the fat boxes make more candidates than
+    /// it will hold (about 32 per box): the caller then detects without a skin.
+    template <class Report>
+    bool detect(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
+                const std::array<Input, Dim>& scene_lo, const std::array<Input, Dim>& scene_hi, double skin,
+                const WorldSettings& settings, Report& report, DetectStats& stats) {
+        input_ = input;
+        sure_margin_ = kExact ? 0.0F : sure_margin(origin, scene_lo, scene_hi);
+        retested_ = 0;
+        refreshed_ = 0;
+        rebuilt_ = false;
+        const std::size_t n = input.size();
+        const bool stale = !built_ || origin != origin_ || skin != skin_ || 4 * n > 5 * rebuilt_boxes_ ||
+                           5 * n < 4 * rebuilt_boxes_;
+        try {
+            if (stale || !step(report, stats)) {
+                origin_ = origin;
+                skin_ = skin;
+                if (!rebuild(settings, stats)) return false;
+                test_candidates(report, false);
+            }
+        } catch (...) {
+            // A sink that threw (or a pair limit) may have left the candidates half compacted:
+            // the next detection starts from a rebuild.
+            built_ = false;
+            throw;
+        }
+        if (candidates_.size() > candidate_cap(n)) built_ = false;  // let the next rebuild judge
+        stats.skin_candidates = candidates_.size();
+        stats.skin_refreshed = refreshed_;
+        stats.skin_rebuilt = rebuilt_;
+        return true;
+    }
+
+    /// A held coordinate h of shifted coordinate v = fl(x - origin), |v| <= M, is within
+    /// ulp(M) / 2 <= 2^-24 M (plus half the smallest subnormal) of v. Where the float difference
+    /// of two held coordinates is at least M 2^-21 (plus 2^-140), their exact difference exceeds
+    /// both errors together, so the shifted coordinates are in the same order, and the inputs
+    /// too (the shift is monotone): held boxes that overlap by that margin hold input boxes that
+    /// overlap.
+    [[nodiscard]] static float sure_margin(const std::array<Input, Dim>& origin, const std::array<Input, Dim>& lo,
+                                           const std::array<Input, Dim>& hi) noexcept {
+        double largest = 0;
+        for (int k = 0; k < Dim; ++k) {
+            largest = std::max(largest, std::abs(static_cast<double>(lo[k] - origin[k])));
+            largest = std::max(largest, std::abs(static_cast<double>(hi[k] - origin[k])));
+        }
+        return float_above(std::ldexp(largest, -21) + std::ldexp(1.0, -140));
+    }
+
+    /// Pairs the held floats could not settle, tested again on the input, in the last detection.
+    [[nodiscard]] std::size_t retested() const noexcept { return retested_; }
+
+    void clear() { *this = SkinList(); }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        return cells_.bytes_held() + (fat_.capacity() + held_.capacity()) * sizeof(Held) +
+               (slot_of_.capacity() + position_of_.capacity() + moved_.capacity() + fresh_.capacity()) *
+                   sizeof(std::uint32_t) +
+               state_.capacity() + gone_.capacity() * sizeof(Position) + dirty_.capacity() * sizeof(std::uint64_t) +
+               (candidates_.capacity() + hits_.capacity()) * sizeof(Candidate) + sure_.capacity() + pairs_.capacity() * sizeof(Pair);
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    using Position = std::uint32_t;
+    struct Candidate {
+        Position a;
+        Position b;
+    };
+    /// Rebuild: collects the pipeline's pairs of fat boxes (slots, turned into positions after).
+    struct TooManyCandidates {};
+    struct CandidateCollector {
+        std::vector<Candidate>& candidates;
+        std::size_t cap;
+        void operator()(BoxId a, BoxId b) {
+            if (candidates.size() >= cap) throw TooManyCandidates{};
+            candidates.push_back(Candidate{static_cast<Position>(a), static_cast<Position>(b)});
+        }
+        void append(std::span<const Pair> pairs) {
+            for (const Pair& pair : pairs) (*this)(pair.a, pair.b);
+        }
+    };
+
+    // Per position.
+    static constexpr std::uint8_t kMoved = 1;  // fat box changed since the rebuild (or new): not in the cells
+    static constexpr std::uint8_t kFresh = 2;  // fat box changed in this detection
+    static constexpr std::uint8_t kGone = 4;   // its slot is past the caller's array
+    static constexpr std::uint8_t kDone = 8;   // fresh, and its new candidates are found already
+
+    static constexpr bool kExact = std::same_as<Input, float>;  // held boxes are the input's own
+
+    [[nodiscard]] static std::size_t candidate_cap(std::size_t n) noexcept { return 32 * n + (std::size_t{1} << 20); }
+    /// The moved list is tested against every fresh box: past this length a rebuild is cheaper.
+    [[nodiscard]] static std::size_t moved_limit(std::size_t n) noexcept { return std::max<std::size_t>(64, n / 64); }
+
+    [[nodiscard]] Held fattened(const Held& held) const noexcept {
+        Held fat;
+        for (int k = 0; k < Dim; ++k) {
+            fat.min[k] = float_below(static_cast<double>(held.min[k]) - skin_);
+            fat.max[k] = float_above(static_cast<double>(held.max[k]) + skin_);
+        }
+        return fat;
+    }
+
+    [[nodiscard]] static bool inside(const Held& box, const Held& fat) noexcept {
+        bool in = true;
+        for (int k = 0; k < Dim; ++k) in &= fat.min[k] <= box.min[k] && box.max[k] <= fat.max[k];
+        return in;
+    }
+
+    /// The pipeline's pairs of fat boxes become the candidates; positions follow its new order.
+    bool rebuild(const WorldSettings& settings, DetectStats& stats) {
+        rebuilt_ = true;
+        const std::size_t n = input_.size();
+        // held_ serves as the fat boxes by slot until the positions are known.
+        resize_with_slack(held_, n + 1);  // and one box of padding for overlap_bit()
+        for (std::size_t slot = 0; slot < n; ++slot) held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_));
+        candidates_.clear();
+        cells_.forget_slots_from(n);
+        CandidateCollector collect{candidates_, candidate_cap(n)};
+        try {
+            cells_.detect(std::span<const Held>(held_.data(), n), {}, settings, collect, stats);
+        } catch (const TooManyCandidates&) {
+            clear();
+            return false;
+        }
+        const std::span<const Slot> order = cells_.order();
+        slot_of_.assign(order.begin(), order.end());
+        resize_with_slack(position_of_, n);
+        resize_with_slack(fat_, n);
+        for (std::size_t p = 0; p < n; ++p) {
+            position_of_[slot_of_[p]] = static_cast<Position>(p);
+            fat_[p] = held_[slot_of_[p]];
+        }
+        for (Candidate& candidate : candidates_) {
+            candidate.a = position_of_[candidate.a];
+            candidate.b = position_of_[candidate.b];
+        }
+        gather_held(0);
+        state_.assign(n, 0);
+        dirty_.assign((n + 63) / 64, 0);
+        moved_.clear();
+        fresh_.clear();
+        rebuilt_boxes_ = n;
+        built_ = true;
+        return true;
+    }
+
+    /// held_[p] from the caller's box at slot_of_[p], for p from `first` on.
+    void gather_held(std::size_t first) {
+        const std::size_t count = slot_of_.size();
+        constexpr std::size_t ahead = 32;
+        for (std::size_t p = first; p < count; ++p) {
+            if (p + ahead < count && slot_of_[p + ahead] < input_.size()) prefetch_whole(&input_[slot_of_[p + ahead]]);
+            if (slot_of_[p] < input_.size()) held_[p] = held_box<Input, Dim>(input_[slot_of_[p]], origin_);
+        }
+    }
+
+    /// One detection on the kept candidates; false (before reporting anything) when the moved
+    /// list would outgrow its limit, and a rebuild should run instead.
+    template <class Report>
+    bool step(Report& report, DetectStats& stats) {
+        const auto start = Clock::now();
+        const std::size_t n = input_.size();
+        const std::size_t known = position_of_.size();
+        fresh_.clear();
+        gone_.clear();
+        std::size_t newly_moved = 0;
+        constexpr std::size_t ahead = 32;
+        const std::size_t count = slot_of_.size();
+        for (std::size_t p = 0; p < count; ++p) {
+            const Slot slot = slot_of_[p];
+            std::uint8_t& state = state_[p];
+            if (slot >= n) {
+                if ((state & kGone) == 0) {
+                    state |= kGone;
+                    gone_.push_back(static_cast<Position>(p));
+                }
+                continue;
+            }
+            if (p + ahead < count && slot_of_[p + ahead] < n) prefetch_whole(&input_[slot_of_[p + ahead]]);
+            const Held held = held_box<Input, Dim>(input_[slot], origin_);
+            held_[p] = held;
+            if ((state & kGone) != 0 || !inside(held, fat_[p])) {
+                fresh_.push_back(static_cast<Position>(p));
+                newly_moved += (state & kMoved) == 0 ? 1U : 0U;
+            }
+        }
+        if (n > known) newly_moved += n - known;
+        if (moved_.size() + newly_moved > moved_limit(n)) return false;
+        for (std::size_t slot = known; slot < n; ++slot) {
+            const auto p = static_cast<Position>(slot_of_.size());
+            slot_of_.push_back(static_cast<Slot>(slot));
+            position_of_.push_back(p);
+            held_.back() = held_box<Input, Dim>(input_[slot], origin_);
+            held_.push_back(Held{});  // the padding
+            fat_.push_back(Held{});
+            state_.push_back(0);
+            fresh_.push_back(p);
+        }
+        for (const Position p : fresh_) {
+            fat_[p] = fattened(held_[p]);
+            std::uint8_t& state = state_[p];
+            state &= static_cast<std::uint8_t>(~kGone);
+            if ((state & kMoved) == 0) moved_.push_back(p);
+            state |= kMoved | kFresh;
+        }
+        refreshed_ = fresh_.size();
+        const bool newly_gone = !gone_.empty();
+        resize_with_slack(dirty_, (slot_of_.size() + 63) / 64);
+        for (const Position p : fresh_) dirty_[p >> 6] |= std::uint64_t{1} << (p & 63);
+        for (const Position p : gone_) dirty_[p >> 6] |= std::uint64_t{1} << (p & 63);
+        stats.update_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+
+        const auto check_start = Clock::now();
+        test_candidates(report, !fresh_.empty() || newly_gone);
+        for (const Position p : fresh_) find_candidates_of(p, report);
+        for (const Position p : fresh_) state_[p] &= static_cast<std::uint8_t>(~(kFresh | kDone));
+        for (const Position p : fresh_) dirty_[p >> 6] = 0;
+        for (const Position p : gone_) dirty_[p >> 6] = 0;
+        stats.check_seconds = std::chrono::duration<double>(Clock::now() - check_start).count();
+        return true;
+    }
+
+    template <class Report>
+    void test(Position a, Position b, Report& report) {
+        const std::uint32_t bits = overlap_bits(&held_[a], &held_[b]);
+        if ((bits & 1U) == 0) return;
+        if (!kExact && (bits & 2U) == 0) {
+            ++retested_;
+            if (!overlaps(input_[slot_of_[a]], input_[slot_of_[b]])) return;
+        }
+        report(BoxId{slot_of_[a]}, BoxId{slot_of_[b]});
+    }
+
+    /// Tests every candidate, after dropping those of boxes marked in dirty_ when `dropping`.
+    /// Branch-free over the candidates (about half of them overlap, which no predictor guesses);
+    /// the hits go on in blocks, to the confirmation on the input where the floats cannot settle
+    /// them, and to the report as runs of pairs.
+    template <class Report>
+    void test_candidates(Report& report, bool dropping) {
+        constexpr std::size_t kBlock = 2048;
+        hits_.resize(kBlock);
+        sure_.resize(kBlock);
+        Candidate* candidates = candidates_.data();
+        const Held* held = held_.data();
+        const std::uint64_t* dirty = dirty_.data();
+        const std::size_t count = candidates_.size();
+        std::size_t kept = 0;
+        std::size_t hits = 0;
+        for (std::size_t i = 0; i < count; ++i) {
+            const Candidate candidate = candidates[i];
+            std::uint32_t keep = 1;
+            if (dropping) {
+                keep = static_cast<std::uint32_t>(~((dirty[candidate.a >> 6] >> (candidate.a & 63)) |
+                                                    (dirty[candidate.b >> 6] >> (candidate.b & 63))) & 1U);
+                candidates[kept] = candidate;
+                kept += keep;
+            }
+            const std::uint32_t bits = overlap_bits(held + candidate.a, held + candidate.b);
+            hits_[hits] = candidate;
+            sure_[hits] = static_cast<std::uint8_t>(bits >> 1);
+            hits += keep & bits;
+            if (hits == kBlock) {
+                report_hits(hits, report);
+                hits = 0;
+            }
+        }
+        report_hits(hits, report);
+        if (dropping) candidates_.resize(kept);
+    }
+
+    /// Bit 0: held boxes `a` and `b` overlap; bit 1: they overlap by at least sure_margin_ on
+    /// every axis, which proves that the input boxes overlap too (see detect()). Four lanes at a
+    /// time where GCC's vector extensions are at hand (a lane past max[Dim-1] reads the next box
+    /// or held_'s padding, and is masked off), so that no branch depends on the answer.
+    [[nodiscard]] std::uint32_t overlap_bits(const Held* a, const Held* b) const noexcept {
+        constexpr std::uint32_t all = (1U << Dim) - 1;
+#if defined(__GNUC__)
+        if constexpr (Dim <= 3) {
+            using Lanes [[gnu::vector_size(16)]] = float;
+            Lanes a_min, a_max, b_min, b_max;
+            std::memcpy(&a_min, a->min.data(), sizeof a_min);
+            std::memcpy(&a_max, a->max.data(), sizeof a_max);
+            std::memcpy(&b_min, b->min.data(), sizeof b_min);
+            std::memcpy(&b_max, b->max.data(), sizeof b_max);
+            const auto hit = (a_min <= b_max) & (b_min <= a_max);
+            const auto sure = ((b_max - a_min) >= sure_margin_) & ((a_max - b_min) >= sure_margin_);
+            std::uint32_t hit_bits = 0;
+            std::uint32_t sure_bits = 0;
+            for (int k = 0; k < Dim; ++k) {
+                hit_bits |= static_cast<std::uint32_t>(hit[k] & 1) << k;
+                sure_bits |= static_cast<std::uint32_t>(sure[k] & 1) << k;
+            }
+            return (hit_bits == all ? 1U : 0U) | (sure_bits == all ? 2U : 0U);
+        }
+#endif
+        std::uint32_t hit_bits = 0;
+        std::uint32_t sure_bits = 0;
+        for (int k = 0; k < Dim; ++k) {
+            const bool hit = a->min[k] <= b->max[k] && b->min[k] <= a->max[k];
+            const bool sure = b->max[k] - a->min[k] >= sure_margin_ && a->max[k] - b->min[k] >= sure_margin_;
+            hit_bits |= static_cast<std::uint32_t>(hit) << k;
+            sure_bits |= static_cast<std::uint32_t>(sure) << k;
+        }
+        return (hit_bits == all ? 1U : 0U) | (sure_bits == all ? 2U : 0U);
+    }
+
+    template <class Report>
+    void report_hits(std::size_t hits, Report& report) {
+        pairs_.clear();
+        for (std::size_t i = 0; i < hits; ++i) {
+            const Candidate hit = hits_[i];
+            if (!kExact && sure_[i] == 0) {
+                ++retested_;
+                if (!overlaps(input_[slot_of_[hit.a]], input_[slot_of_[hit.b]])) continue;
+            }
+            const BoxId a = slot_of_[hit.a];
+            const BoxId b = slot_of_[hit.b];
+            pairs_.push_back(a < b ? Pair{a, b} : Pair{b, a});
+        }
+        report.append(pairs_);
+    }
+
+    /// The new candidates of fresh box `p`: the boxes that kept their fat box since the rebuild,
+    /// through its cells, and the moved ones directly. A pair of two fresh boxes is found by the
+    /// one that comes second.
+    template <class Report>
+    void find_candidates_of(Position p, Report& report) {
+        const Held fat = fat_[p];
+        auto add = [&](Position q) {
+            candidates_.push_back(Candidate{p, q});
+            test(p, q, report);
+        };
+        cells_.for_each_held_overlapping(fat, [&](Slot slot) {
+            const Position q = position_of_[slot];
+            if ((state_[q] & (kMoved | kGone)) == 0) add(q);
+        });
+        for (const Position q : moved_) {
+            const std::uint8_t state = state_[q];
+            if (q == p || (state & kGone) != 0 || ((state & kFresh) != 0 && (state & kDone) == 0)) continue;
+            if (overlaps(fat, fat_[q])) add(q);
+        }
+        state_[p] |= kDone;
+    }
+
+    std::span<const Box<Input, Dim>> input_;
+    std::array<Input, Dim> origin_{};
+    double skin_ = 0;
+    float sure_margin_ = 0;
+    bool built_ = false;
+    bool rebuilt_ = false;
+    std::size_t rebuilt_boxes_ = 0;
+    std::size_t retested_ = 0;
+    std::size_t refreshed_ = 0;
+
+    PersistentCutPipeline<float, Dim, float> cells_;  // over the fat boxes of the last rebuild
+    std::vector<Held> fat_;              // per position
+    std::vector<Held> held_;             // per position: this detection's boxes, held as floats; one more of padding
+    std::vector<Slot> slot_of_;          // per position: the caller's index
+    std::vector<Position> position_of_;  // per slot ever seen since the rebuild
+    std::vector<std::uint8_t> state_;    // per position: kMoved, kFresh, kGone, kDone
+    std::vector<Position> moved_;        // positions with kMoved, each once
+    std::vector<Position> fresh_;        // positions with kFresh, in order
+    std::vector<Candidate> candidates_;  // pairs of positions whose fat boxes overlap, each once
+    std::vector<Position> gone_;         // positions whose slot left the array in this detection
+    std::vector<std::uint64_t> dirty_;   // per position, a bit: fresh or gone in this detection
+    std::vector<Candidate> hits_;        // a block of candidates that overlap on the held floats
+    std::vector<std::uint8_t> sure_;     // and whether the floats prove that their input boxes do
+    std::vector<Pair> pairs_;            // and the pairs they make
+};
+
+}  // namespace smb::detail
