@@ -28,6 +28,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <exception>
+#include <atomic>
+#include <utility>
 #include <limits>
 #include <span>
 #include <type_traits>
@@ -43,7 +46,26 @@
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace smb::detail {
+
+[[nodiscard]] inline int omp_thread() noexcept {
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
+}
+[[nodiscard]] inline int omp_threads() noexcept {
+#ifdef _OPENMP
+    return omp_get_num_threads();
+#else
+    return 1;
+#endif
+}
 
 /// `value` rounded down (or up) to a float, clamped to the finite floats: the fat box's ends,
 /// so that it always contains the held box it was grown from.
@@ -70,6 +92,9 @@ public:
                 const std::array<Input, Dim>& scene_lo, const std::array<Input, Dim>& scene_hi, double skin,
                 const WorldSettings& settings, Report& report, DetectStats& stats) {
         input_ = input;
+#ifdef _OPENMP
+        threads_ = std::max(1, settings.threads == 0 ? omp_get_max_threads() : static_cast<int>(settings.threads));
+#endif
         sure_margin_ = kExact ? 0.0F : sure_margin(origin, scene_lo, scene_hi);
         retested_ = 0;
         refreshed_ = 0;
@@ -91,7 +116,7 @@ public:
             throw;
         }
         if (candidates_.size() > candidate_cap(n)) built_ = false;  // let the next rebuild judge
-        stats.skin_candidates = candidates_.size();
+        stats.skin_candidates = candidates_.size() - tombstones_;
         stats.skin_refreshed = refreshed_;
         stats.skin_rebuilt = rebuilt_;
         return true;
@@ -123,11 +148,24 @@ public:
                (slot_of_.capacity() + position_of_.capacity() + moved_.capacity() + fresh_.capacity()) *
                    sizeof(std::uint32_t) +
                state_.capacity() + gone_.capacity() * sizeof(Position) + dirty_.capacity() * sizeof(std::uint64_t) +
-               (candidates_.capacity() + hits_.capacity()) * sizeof(Candidate) + sure_.capacity() + pairs_.capacity() * sizeof(Pair);
+               candidates_.capacity() * sizeof(Candidate) + scratch_bytes();
     }
 
 private:
     using Clock = std::chrono::steady_clock;
+    /// Below this many positions or candidates one thread does the pass alone.
+    static constexpr std::size_t kParallelFrom = std::size_t{1} << 15;
+    static constexpr std::size_t kBlockCandidates = std::size_t{1} << 15;
+
+    [[nodiscard]] std::size_t scratch_bytes() const noexcept {
+        std::size_t bytes = 0;
+        for (const Scan& scan : scans_) bytes += (scan.fresh.capacity() + scan.gone.capacity()) * sizeof(Position);
+        for (const Worker& worker : workers_)
+            bytes += worker.hits.capacity() * sizeof(Candidate) + worker.sure.capacity() +
+                     worker.out.pairs.capacity() * sizeof(Pair);
+        for (const Block& block : blocks_) bytes += block.pairs.capacity() * sizeof(Pair);
+        return bytes;
+    }
     using Position = std::uint32_t;
     struct Candidate {
         Position a;
@@ -182,6 +220,7 @@ private:
         resize_with_slack(held_, n + 1);  // and one box of padding for overlap_bit()
         for (std::size_t slot = 0; slot < n; ++slot) held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_));
         candidates_.clear();
+        tombstones_ = 0;
         cells_.forget_slots_from(n);
         CandidateCollector collect{candidates_, candidate_cap(n)};
         try {
@@ -229,28 +268,26 @@ private:
         const auto start = Clock::now();
         const std::size_t n = input_.size();
         const std::size_t known = position_of_.size();
+        // Each thread scans a contiguous share of the positions; their lists, joined in thread
+        // order, are the lists of one scan.
+        if (scans_.size() != static_cast<std::size_t>(threads_)) scans_.resize(static_cast<std::size_t>(threads_));
+        const std::size_t count = slot_of_.size();
+#pragma omp parallel num_threads(threads_) if (threads_ > 1 && count >= kParallelFrom)
+        {
+            const auto thread = static_cast<std::size_t>(omp_thread());
+            const std::size_t shares = static_cast<std::size_t>(omp_threads());
+            scan(count * thread / shares, count * (thread + 1) / shares, scans_[thread]);
+        }
         fresh_.clear();
         gone_.clear();
         std::size_t newly_moved = 0;
-        constexpr std::size_t ahead = 32;
-        const std::size_t count = slot_of_.size();
-        for (std::size_t p = 0; p < count; ++p) {
-            const Slot slot = slot_of_[p];
-            std::uint8_t& state = state_[p];
-            if (slot >= n) {
-                if ((state & kGone) == 0) {
-                    state |= kGone;
-                    gone_.push_back(static_cast<Position>(p));
-                }
-                continue;
-            }
-            if (p + ahead < count && slot_of_[p + ahead] < n) prefetch_whole(&input_[slot_of_[p + ahead]]);
-            const Held held = held_box<Input, Dim>(input_[slot], origin_);
-            held_[p] = held;
-            if ((state & kGone) != 0 || !inside(held, fat_[p])) {
-                fresh_.push_back(static_cast<Position>(p));
-                newly_moved += (state & kMoved) == 0 ? 1U : 0U;
-            }
+        for (Scan& scan : scans_) {
+            fresh_.insert(fresh_.end(), scan.fresh.begin(), scan.fresh.end());
+            gone_.insert(gone_.end(), scan.gone.begin(), scan.gone.end());
+            newly_moved += scan.newly_moved;
+            scan.fresh.clear();
+            scan.gone.clear();
+            scan.newly_moved = 0;
         }
         if (n > known) newly_moved += n - known;
         if (moved_.size() + newly_moved > moved_limit(n)) return false;
@@ -288,6 +325,38 @@ private:
         return true;
     }
 
+    /// What one thread's share of the containment check found.
+    struct Scan {
+        std::vector<Position> fresh;  // boxes out of their fat box, or back in the array
+        std::vector<Position> gone;   // positions whose slot just left the array
+        std::size_t newly_moved = 0;  // of the fresh ones, those not moved since the rebuild
+    };
+
+    /// Positions [first, last): the caller's boxes as held floats into held_, and each checked
+    /// against its fat box.
+    void scan(std::size_t first, std::size_t last, Scan& found) {
+        const std::size_t n = input_.size();
+        constexpr std::size_t ahead = 32;
+        for (std::size_t p = first; p < last; ++p) {
+            const Slot slot = slot_of_[p];
+            std::uint8_t& state = state_[p];
+            if (slot >= n) {
+                if ((state & kGone) == 0) {
+                    state |= kGone;
+                    found.gone.push_back(static_cast<Position>(p));
+                }
+                continue;
+            }
+            if (p + ahead < last && slot_of_[p + ahead] < n) prefetch_whole(&input_[slot_of_[p + ahead]]);
+            const Held held = held_box<Input, Dim>(input_[slot], origin_);
+            held_[p] = held;
+            if ((state & kGone) != 0 || !inside(held, fat_[p])) {
+                found.fresh.push_back(static_cast<Position>(p));
+                found.newly_moved += (state & kMoved) == 0 ? 1U : 0U;
+            }
+        }
+    }
+
     template <class Report>
     void test(Position a, Position b, Report& report) {
         const std::uint32_t bits = overlap_bits(&held_[a], &held_[b]);
@@ -299,41 +368,157 @@ private:
         report(BoxId{slot_of_[a]}, BoxId{slot_of_[b]});
     }
 
-    /// Tests every candidate, after dropping those of boxes marked in dirty_ when `dropping`.
-    /// Branch-free over the candidates (about half of them overlap, which no predictor guesses);
-    /// the hits go on in blocks, to the confirmation on the input where the floats cannot settle
-    /// them, and to the report as runs of pairs.
+    /// Tests every candidate, after dropping those of boxes marked in dirty_ when `dropping`,
+    /// and reports the pairs in the order of the list, whatever the number of threads. A dropped
+    /// candidate becomes a tombstone, a pair of one position with itself, which the report
+    /// skips: the list is written only where it changes, and closed up once tombstones are a
+    /// thirty-second of it.
     template <class Report>
     void test_candidates(Report& report, bool dropping) {
-        constexpr std::size_t kBlock = 2048;
-        hits_.resize(kBlock);
-        sure_.resize(kBlock);
+        const std::size_t count = candidates_.size();
+        if (threads_ == 1 || count < kParallelFrom) {
+            if (workers_.empty()) workers_.resize(1);
+            Block& out = workers_[0].out;
+            out.pairs.clear();
+            test_range(0, count, dropping, workers_[0], [&] {
+                report.append(out.pairs);
+                out.pairs.clear();
+            });
+            report.append(out.pairs);
+            retested_ += out.retested;
+            tombstones_ += out.tombstones;
+            out = Block{std::move(out.pairs)};
+        } else {
+            test_in_rounds(report, dropping);
+        }
+        if (32 * tombstones_ > count) {
+            std::erase_if(candidates_, [](const Candidate& candidate) { return candidate.a == candidate.b; });
+            tombstones_ = 0;
+        }
+    }
+
+    /// The pairs found in one block of candidates, and its counts.
+    struct Block {
+        std::vector<Pair> pairs;
+        std::size_t retested = 0;
+        std::size_t tombstones = 0;
+    };
+    /// One thread's buffers: a run of hits waiting to become pairs.
+    struct Worker {
+        std::vector<Candidate> hits;
+        std::vector<std::uint8_t> sure;
+        Block out;  // the single-threaded pass's
+    };
+
+    /// Several threads: blocks of candidates in rounds, each block's pairs buffered; while the
+    /// threads test one round, the calling thread hands the previous one to the report (so the
+    /// caller's sink runs on the calling thread only, in list order). A throwing sink is caught
+    /// and thrown again once the threads have joined.
+    template <class Report>
+    void test_in_rounds(Report& report, bool dropping) {
+        const std::size_t count = candidates_.size();
+        const auto threads = static_cast<std::size_t>(threads_);
+        if (workers_.size() < threads) workers_.resize(threads);
+        const std::size_t blocks = (count + kBlockCandidates - 1) / kBlockCandidates;
+        const std::size_t round = 4 * threads;
+        const std::size_t rounds = (blocks + round - 1) / round;
+        if (blocks_.size() < 2 * round) blocks_.resize(2 * round);
+        auto block_of = [&](std::size_t r, std::size_t b) -> Block& { return blocks_[round * (r % 2) + b]; };
+        std::exception_ptr failure;
+        std::atomic<bool> failed{false};
+        auto hand_on = [&](std::size_t r) {
+            for (std::size_t b = 0; b < std::min(round, blocks - r * round); ++b) {
+                Block& block = block_of(r, b);
+                retested_ += block.retested;
+                tombstones_ += block.tombstones;
+                if (!failed.load(std::memory_order_relaxed)) report.append(block.pairs);
+            }
+        };
+#pragma omp parallel num_threads(threads_)
+        {
+            for (std::size_t r = 0; r <= rounds; ++r) {
+#pragma omp master
+                {
+                    if (r > 0) {
+                        try {
+                            hand_on(r - 1);
+                        } catch (...) {
+                            failure = std::current_exception();
+                            failed.store(true, std::memory_order_relaxed);
+                        }
+                    }
+                }
+                if (r < rounds) {
+                    const auto in_round = static_cast<std::ptrdiff_t>(std::min(round, blocks - r * round));
+                    // The barrier at the end of this loop also waits for the hand-over above.
+#pragma omp for schedule(dynamic, 1)
+                    for (std::ptrdiff_t b = 0; b < in_round; ++b) {
+                        Block& block = block_of(r, static_cast<std::size_t>(b));
+                        block.pairs.clear();
+                        block.retested = 0;
+                        block.tombstones = 0;
+                        const std::size_t first = (r * round + static_cast<std::size_t>(b)) * kBlockCandidates;
+                        // Tombstones are still made after a failure, so that the list stays true.
+                        Worker& worker = workers_[static_cast<std::size_t>(omp_thread())];
+                        std::swap(worker.out, block);
+                        test_range(first, std::min(first + kBlockCandidates, count), dropping, worker, [] {});
+                        std::swap(worker.out, block);
+                    }
+                }
+            }
+        }
+        if (failure) std::rethrow_exception(failure);
+    }
+
+    /// Candidates [first, last) into worker.out; flush() is called whenever a run of hits has
+    /// become pairs. Branch-free over the candidates (about half of them overlap, which no
+    /// predictor guesses).
+    template <class Flush>
+    void test_range(std::size_t first, std::size_t last, bool dropping, Worker& worker, Flush&& flush) {
+        constexpr std::size_t kRun = 2048;
+        worker.hits.resize(kRun);
+        worker.sure.resize(kRun);
         Candidate* candidates = candidates_.data();
         const Held* held = held_.data();
         const std::uint64_t* dirty = dirty_.data();
-        const std::size_t count = candidates_.size();
-        std::size_t kept = 0;
         std::size_t hits = 0;
-        for (std::size_t i = 0; i < count; ++i) {
+        for (std::size_t i = first; i < last; ++i) {
             const Candidate candidate = candidates[i];
             std::uint32_t keep = 1;
             if (dropping) {
                 keep = static_cast<std::uint32_t>(~((dirty[candidate.a >> 6] >> (candidate.a & 63)) |
                                                     (dirty[candidate.b >> 6] >> (candidate.b & 63))) & 1U);
-                candidates[kept] = candidate;
-                kept += keep;
+                if (keep == 0 && candidate.a != candidate.b) {
+                    candidates[i] = Candidate{candidate.a, candidate.a};
+                    ++worker.out.tombstones;
+                }
             }
             const std::uint32_t bits = overlap_bits(held + candidate.a, held + candidate.b);
-            hits_[hits] = candidate;
-            sure_[hits] = static_cast<std::uint8_t>(bits >> 1);
+            worker.hits[hits] = candidate;
+            worker.sure[hits] = static_cast<std::uint8_t>(bits >> 1);
             hits += keep & bits;
-            if (hits == kBlock) {
-                report_hits(hits, report);
+            if (hits == kRun) {
+                pairs_of_hits(hits, worker);
+                flush();
                 hits = 0;
             }
         }
-        report_hits(hits, report);
-        if (dropping) candidates_.resize(kept);
+        pairs_of_hits(hits, worker);
+    }
+
+    /// The pairs of a run of hits, each confirmed on the input where the floats cannot settle it.
+    void pairs_of_hits(std::size_t hits, Worker& worker) const {
+        for (std::size_t i = 0; i < hits; ++i) {
+            const Candidate hit = worker.hits[i];
+            if (hit.a == hit.b) continue;  // a tombstone
+            if (!kExact && worker.sure[i] == 0) {
+                ++worker.out.retested;
+                if (!overlaps(input_[slot_of_[hit.a]], input_[slot_of_[hit.b]])) continue;
+            }
+            const BoxId a = slot_of_[hit.a];
+            const BoxId b = slot_of_[hit.b];
+            worker.out.pairs.push_back(a < b ? Pair{a, b} : Pair{b, a});
+        }
     }
 
     /// Bit 0: held boxes `a` and `b` overlap; bit 1: they overlap by at least sure_margin_ on
@@ -344,20 +529,16 @@ private:
         constexpr std::uint32_t all = (1U << Dim) - 1;
 #if defined(__GNUC__)
         if constexpr (Dim <= 3) {
-            using Lanes [[gnu::vector_size(16)]] = float;
+            using Lanes = SweepLanes<4>::Floats;
             Lanes a_min, a_max, b_min, b_max;
             std::memcpy(&a_min, a->min.data(), sizeof a_min);
             std::memcpy(&a_max, a->max.data(), sizeof a_max);
             std::memcpy(&b_min, b->min.data(), sizeof b_min);
             std::memcpy(&b_max, b->max.data(), sizeof b_max);
-            const auto hit = (a_min <= b_max) & (b_min <= a_max);
-            const auto sure = ((b_max - a_min) >= sure_margin_) & ((a_max - b_min) >= sure_margin_);
-            std::uint32_t hit_bits = 0;
-            std::uint32_t sure_bits = 0;
-            for (int k = 0; k < Dim; ++k) {
-                hit_bits |= static_cast<std::uint32_t>(hit[k] & 1) << k;
-                sure_bits |= static_cast<std::uint32_t>(sure[k] & 1) << k;
-            }
+            const SweepLanes<4>::Masks hit = (a_min <= b_max) & (b_min <= a_max);
+            const SweepLanes<4>::Masks sure = ((b_max - a_min) >= sure_margin_) & ((a_max - b_min) >= sure_margin_);
+            const std::uint32_t hit_bits = lane_bits<4>(hit) & all;
+            const std::uint32_t sure_bits = lane_bits<4>(sure) & all;
             return (hit_bits == all ? 1U : 0U) | (sure_bits == all ? 2U : 0U);
         }
 #endif
@@ -372,21 +553,6 @@ private:
         return (hit_bits == all ? 1U : 0U) | (sure_bits == all ? 2U : 0U);
     }
 
-    template <class Report>
-    void report_hits(std::size_t hits, Report& report) {
-        pairs_.clear();
-        for (std::size_t i = 0; i < hits; ++i) {
-            const Candidate hit = hits_[i];
-            if (!kExact && sure_[i] == 0) {
-                ++retested_;
-                if (!overlaps(input_[slot_of_[hit.a]], input_[slot_of_[hit.b]])) continue;
-            }
-            const BoxId a = slot_of_[hit.a];
-            const BoxId b = slot_of_[hit.b];
-            pairs_.push_back(a < b ? Pair{a, b} : Pair{b, a});
-        }
-        report.append(pairs_);
-    }
 
     /// The new candidates of fresh box `p`: the boxes that kept their fat box since the rebuild,
     /// through its cells, and the moved ones directly. A pair of two fresh boxes is found by the
@@ -419,6 +585,7 @@ private:
     std::size_t rebuilt_boxes_ = 0;
     std::size_t retested_ = 0;
     std::size_t refreshed_ = 0;
+    std::size_t tombstones_ = 0;  // candidates dropped in place (a pair of a position with itself)
 
     PersistentCutPipeline<float, Dim, float> cells_;  // over the fat boxes of the last rebuild
     std::vector<Held> fat_;              // per position
@@ -428,12 +595,13 @@ private:
     std::vector<std::uint8_t> state_;    // per position: kMoved, kFresh, kGone, kDone
     std::vector<Position> moved_;        // positions with kMoved, each once
     std::vector<Position> fresh_;        // positions with kFresh, in order
-    std::vector<Candidate> candidates_;  // pairs of positions whose fat boxes overlap, each once
+    std::vector<Candidate> candidates_;  // pairs of positions whose fat boxes overlap, each once; and tombstones
     std::vector<Position> gone_;         // positions whose slot left the array in this detection
     std::vector<std::uint64_t> dirty_;   // per position, a bit: fresh or gone in this detection
-    std::vector<Candidate> hits_;        // a block of candidates that overlap on the held floats
-    std::vector<std::uint8_t> sure_;     // and whether the floats prove that their input boxes do
-    std::vector<Pair> pairs_;            // and the pairs they make
+    int threads_ = 1;
+    std::vector<Scan> scans_;            // per thread
+    std::vector<Worker> workers_;        // per thread
+    std::vector<Block> blocks_;          // two rounds of blocks of candidates (several threads)
 };
 
 }  // namespace smb::detail

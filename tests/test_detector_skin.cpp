@@ -204,6 +204,57 @@ TYPED_TEST(DetectorSkinTest, ReportsTheSamePairsInTheSameOrderWhateverTheThreadC
     EXPECT_EQ(runs[0], runs[2]);
 }
 
+// Past 2^15 positions and candidates, the containment check and the candidate pass share
+// their work among the threads (in blocks handed on in list order): the same pairs in the same
+// order as one thread, and the same set as the detector without a skin (itself checked against
+// brute force above), over steps that keep, refresh and drop candidates; a sink that throws
+// on the threaded pass leaves the detector valid.
+TYPED_TEST(DetectorSkinTest, OnManyBoxesSharesTheWorkAmongThreadsWithoutChangingThePairs) {
+    using TestBox = typename TestFixture::BoxT;
+    using TestDetector = Detector<typename TestFixture::Real, TestFixture::Dim>;
+    const double space = TestFixture::Dim == 3 ? 40 : 260;
+    std::vector<std::vector<Pair>> runs;
+    for (std::size_t threads : {1U, 2U, 3U}) {
+        SCOPED_TRACE(::testing::Message() << threads << " threads");
+        Random random(31);
+        std::vector<TestBox> boxes;
+        for (int i = 0; i < 50000; ++i) boxes.push_back(this->new_box(random, 0, space));
+        WorldSettings settings;
+        settings.threads = threads;
+        settings.skin = 0.1;
+        settings.pair_chunk_size = 1000;
+        TestDetector detector(settings);
+        TestDetector plain;
+        std::vector<Pair> all;
+        for (int step = 0; step < 6; ++step) {
+            SCOPED_TRACE(::testing::Message() << "step " << step);
+            this->move(random, boxes, 0.01);
+            for (int jump = 0; jump < 50; ++jump) boxes[random() % boxes.size()] = this->new_box(random, 0, space);
+            boxes.resize(boxes.size() - 20);
+            if (step == 3) {
+                int chunks = 0;
+                EXPECT_THROW(detector.detect(boxes,
+                                             [&chunks](std::span<const Pair>) {
+                                                 if (++chunks == 7) throw std::runtime_error("sink full");
+                                             }),
+                             std::runtime_error);
+            }
+            std::vector<Pair> pairs;
+            const DetectStats stats = detector.detect(boxes, pairs);
+            EXPECT_GT(stats.skin_candidates, std::size_t{1} << 15);
+            all.insert(all.end(), pairs.begin(), pairs.end());
+            std::vector<Pair> expected;
+            plain.detect(boxes, expected);
+            sort_pairs(pairs);
+            sort_pairs(expected);
+            EXPECT_EQ(pairs, expected);
+        }
+        runs.push_back(all);
+    }
+    EXPECT_EQ(runs[0], runs[1]);
+    EXPECT_EQ(runs[0], runs[2]);
+}
+
 TYPED_TEST(DetectorSkinTest, AThrowingSinkLeavesItValid) {
     using TestBox = typename TestFixture::BoxT;
     Random random(5);
