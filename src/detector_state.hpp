@@ -41,6 +41,8 @@ public:
         rounded_ = RoundedPipeline();
         skin_.clear();
         skin_pause_ = 0;
+        kept_since_rebuild_ = kShortLife;
+        short_lives_ = 0;
         retested_ = 0;
         std::vector<Pair>().swap(chunk_);
         judged_ = false;
@@ -100,7 +102,8 @@ private:
 
     /// With a skin, on floats (the input's own, or double input that floats resolve): the skin
     /// list detects, and the pipelines give their memory back. When its candidates outgrow it
-    /// (a skin far too wide for the scene), it steps aside for kSkinPause detections.
+    /// (a skin far too wide for the scene), or they keep being rebuilt (boxes that move too far
+    /// for the skin), it steps aside for kSkinPause detections.
     bool detected_with_skin(std::span<const Box<Real, Dim>> boxes, const SceneBounds<Real, Dim>& bounds,
                             PairOutput& output, DetectStats& stats) {
         if (settings_.skin == 0 || precision_ != HeldPrecision::floats) {
@@ -116,6 +119,20 @@ private:
         if (!skin_.detect(boxes, origin, bounds.lo, bounds.hi, settings_.skin, settings_, output, stats)) {
             skin_pause_ = kSkinPause;
             return false;
+        }
+        // Candidates rebuilt again before they served kShortLife detections, twice running: the
+        // boxes move too far for the skin, and a rebuild costs more than a detection without it.
+        if (stats.skin_rebuilt) {
+            if (kept_since_rebuild_ < kShortLife && ++short_lives_ >= 2) {
+                skin_.clear();
+                skin_pause_ = kSkinPause;
+                short_lives_ = 0;
+            } else if (kept_since_rebuild_ >= kShortLife) {
+                short_lives_ = 0;
+            }
+            kept_since_rebuild_ = 0;
+        } else {
+            ++kept_since_rebuild_;
         }
         retested_ = skin_.retested();
         exact_ = ExactPipeline();
@@ -157,6 +174,7 @@ private:
 
     static constexpr std::size_t kJudgeEvery = 64;
     static constexpr std::size_t kSkinPause = 64;
+    static constexpr std::size_t kShortLife = 4;
 
     WorldSettings settings_;
     ExactPipeline exact_;
@@ -164,6 +182,8 @@ private:
     SkinList<Real, Dim> skin_;
     SceneBounds<Real, Dim> bounds_;  // of the detection under way
     std::size_t skin_pause_ = 0;
+    std::size_t kept_since_rebuild_ = kShortLife;  // the first build is no short life
+    std::size_t short_lives_ = 0;
     std::size_t retested_ = 0;
     FloatResolution<Real, Dim> judgement_;
     bool judged_ = false;

@@ -298,6 +298,26 @@ TYPED_TEST(DetectorSkinTest, StepsAsideWhenTheSkinMakesFarTooManyCandidates) {
     EXPECT_LT(detector.bytes_held(), 200U * boxes.size());
 }
 
+TYPED_TEST(DetectorSkinTest, StepsAsideWhileTheBoxesMoveFartherThanTheSkin) {
+    using TestBox = typename TestFixture::BoxT;
+    Random random(12);
+    std::vector<TestBox> boxes;
+    for (int i = 0; i < 2000; ++i) boxes.push_back(this->new_box(random, 0, 20));
+    WorldSettings settings;
+    settings.skin = 0.05;
+    Detector<typename TestFixture::Real, TestFixture::Dim> detector(settings);
+    std::vector<bool> skinned;
+    for (int step = 0; step < 8; ++step) {
+        std::vector<Pair> pairs;
+        const DetectStats stats = detector.detect(boxes, pairs);
+        skinned.push_back(stats.skin_candidates > 0);
+        this->expect_brute_force(pairs, boxes);
+        this->move(random, boxes, 0.5);  // ten times the skin at every step
+    }
+    // The build, then two rebuilds that served no kept detection: it steps aside.
+    EXPECT_EQ(skinned, (std::vector<bool>{true, true, true, false, false, false, false, false}));
+}
+
 TYPED_TEST(DetectorSkinTest, RejectsAnInvalidBoxByIndexAndStaysAsItWas) {
     using TestReal = typename TestFixture::Real;
     using TestBox = typename TestFixture::BoxT;
