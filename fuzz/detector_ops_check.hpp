@@ -5,7 +5,8 @@
 //
 // The array holds only valid boxes; an invalid one is offered in a copy of the array, which the
 // detector must refuse naming its index, and must then still give the array's exact pairs.
-// Every detection must equal brute force, whatever the detector holds (floats or doubles).
+// Every detection must equal brute force, whatever the detector holds (floats or doubles), with
+// or without a skin.
 
 #include <array>
 #include <cstddef>
@@ -34,7 +35,7 @@ class DetectorHarness {
 public:
     using BoxT = smb::Box<Real, Dim>;
 
-    explicit DetectorHarness(const smb::WorldSettings& settings) : detector_(settings) {}
+    explicit DetectorHarness(const smb::WorldSettings& settings) : detector_(with_skin(settings)) {}
 
     void run(ByteReader& in) {
         while (!in.done()) step(in);
@@ -42,6 +43,15 @@ public:
     }
 
 private:
+    /// Half the inputs run with a skin (WorldSettings::skin), chosen by the chunk size the shared
+    /// decoding read, so that the inputs of the corpus keep their meaning: none, a thousandth,
+    /// half a unit, four units.
+    static smb::WorldSettings with_skin(smb::WorldSettings settings) {
+        constexpr std::array<double, 4> kSkins{0.0, 1e-3, 0.5, 4.0};
+        settings.skin = kSkins[settings.pair_chunk_size % kSkins.size()];
+        return settings;
+    }
+
     void step(ByteReader& in) {
         switch (in.byte() % 7) {
             case 0:

@@ -86,7 +86,9 @@ public:
     /// Reports every overlapping pair of `input` (box i under id i) to report(i, j). `origin`:
     /// where held coordinates start (held_box.hpp; zero for float input). Returns false, having
     /// reported nothing and released its memory, when the fat boxes make more candidates than
-    /// it will hold (about 32 per box): the caller then detects without a skin.
+    /// it will hold (about 32 per box), or when a quarter of the boxes left their fat boxes
+    /// since the last detection (a skin far too thin for the motion): the caller then detects
+    /// without a skin.
     template <class Report>
     bool detect(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
                 const std::array<Input, Dim>& scene_lo, const std::array<Input, Dim>& scene_hi, double skin,
@@ -103,7 +105,12 @@ public:
         const bool stale = !built_ || origin != origin_ || skin != skin_ || 4 * n > 5 * rebuilt_boxes_ ||
                            5 * n < 4 * rebuilt_boxes_;
         try {
-            if (stale || !step(report, stats)) {
+            const Outcome outcome = stale ? Outcome::rebuild : step(report, stats);
+            if (outcome == Outcome::hopeless) {
+                clear();
+                return false;
+            }
+            if (outcome == Outcome::rebuild) {
                 origin_ = origin;
                 skin_ = skin;
                 if (!rebuild(settings, stats)) return false;
@@ -261,10 +268,12 @@ private:
         }
     }
 
-    /// One detection on the kept candidates; false (before reporting anything) when the moved
-    /// list would outgrow its limit, and a rebuild should run instead.
+    enum class Outcome { kept, rebuild, hopeless };
+
+    /// One detection on the kept candidates; before reporting anything, rebuild when the moved
+    /// list would outgrow its limit, hopeless when a quarter of the boxes left their fat boxes.
     template <class Report>
-    bool step(Report& report, DetectStats& stats) {
+    Outcome step(Report& report, DetectStats& stats) {
         const auto start = Clock::now();
         const std::size_t n = input_.size();
         const std::size_t known = position_of_.size();
@@ -289,8 +298,9 @@ private:
             scan.gone.clear();
             scan.newly_moved = 0;
         }
+        if (4 * fresh_.size() > n) return Outcome::hopeless;
         if (n > known) newly_moved += n - known;
-        if (moved_.size() + newly_moved > moved_limit(n)) return false;
+        if (moved_.size() + newly_moved > moved_limit(n)) return Outcome::rebuild;
         for (std::size_t slot = known; slot < n; ++slot) {
             const auto p = static_cast<Position>(slot_of_.size());
             slot_of_.push_back(static_cast<Slot>(slot));
@@ -322,7 +332,7 @@ private:
         for (const Position p : fresh_) dirty_[p >> 6] = 0;
         for (const Position p : gone_) dirty_[p >> 6] = 0;
         stats.check_seconds = std::chrono::duration<double>(Clock::now() - check_start).count();
-        return true;
+        return Outcome::kept;
     }
 
     /// What one thread's share of the containment check found.

@@ -10,6 +10,7 @@ std::vector<PeerInfo> available_peers() {
         {"smb_detector", true, true},
         {"smb_detector_2threads", true, true},
         {"smb_detector_skin", true, true},
+        {"smb_detector_skin_2threads", true, true},
         {"brute_force", true, true},
         {"box_pruning", true, true},
         {"uniform_grid", true, true},
@@ -51,6 +52,12 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
         // largest box side is 1.
         WorldSettings settings;
         settings.skin = 0.1;
+        return make_smb_detector_peer<Dim>(settings);
+    }
+    if (name == "smb_detector_skin_2threads") {
+        WorldSettings settings;
+        settings.skin = 0.1;
+        settings.threads = 2;
         return make_smb_detector_peer<Dim>(settings);
     }
     if (name == "brute_force") return make_brute_force_peer<Dim>();
