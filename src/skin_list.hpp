@@ -86,9 +86,9 @@ public:
     /// Reports every overlapping pair of `input` (box i under id i) to report(i, j). `origin`:
     /// where held coordinates start (held_box.hpp; zero for float input). Returns false, having
     /// reported nothing and released its memory, when the fat boxes make more candidates than
-    /// it will hold (about 32 per box), or when a quarter of the boxes left their fat boxes
-    /// since the last detection (a skin far too thin for the motion): the caller then detects
-    /// without a skin.
+    /// it will hold (about 32 per box), or when more boxes left their fat boxes since the last
+    /// detection than the moved list may hold (a skin too thin for the motion): the caller then
+    /// detects without a skin.
     template <class Report>
     bool detect(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
                 const std::array<Input, Dim>& scene_lo, const std::array<Input, Dim>& scene_hi, double skin,
@@ -271,7 +271,7 @@ private:
     enum class Outcome { kept, rebuild, hopeless };
 
     /// One detection on the kept candidates; before reporting anything, rebuild when the moved
-    /// list would outgrow its limit, hopeless when a quarter of the boxes left their fat boxes.
+    /// list would outgrow its limit, hopeless when this detection's fresh boxes alone outgrow it.
     template <class Report>
     Outcome step(Report& report, DetectStats& stats) {
         const auto start = Clock::now();
@@ -298,7 +298,9 @@ private:
             scan.gone.clear();
             scan.newly_moved = 0;
         }
-        if (4 * fresh_.size() > n) return Outcome::hopeless;
+        // More boxes out of their skin in one detection than the moved list may hold: every
+        // detection would rebuild, and a rebuild costs more than a detection without a skin.
+        if (fresh_.size() > moved_limit(n)) return Outcome::hopeless;
         if (n > known) newly_moved += n - known;
         if (moved_.size() + newly_moved > moved_limit(n)) return Outcome::rebuild;
         for (std::size_t slot = known; slot < n; ++slot) {

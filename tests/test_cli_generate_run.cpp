@@ -131,6 +131,30 @@ TEST(CliRun, SingleStepAndNoCheck) {
     EXPECT_FALSE(summary["check"]["enabled"].get<bool>());
 }
 
+TEST(CliRun, DetectorWithASkinChecksEveryStepAndSaysHowItKeptItsCandidates) {
+    TempFolder folder;
+    const auto result = run_smb(folder, {"run", "-n", "3000", "-s", "12", "-L", "1e-4", "--pipeline", "detector",
+                                         "--skin", "0.1", "--check-every", "1", "--json"});
+    ASSERT_EQ(result.status, 0) << result.err;
+    const auto summary = nlohmann::json::parse(result.out);
+    EXPECT_EQ(summary["pipeline"], "detector");
+    EXPECT_DOUBLE_EQ(summary["skin"].get<double>(), 0.1);
+    EXPECT_EQ(summary["check"]["steps_checked"], 12);
+    EXPECT_TRUE(summary["check"]["ok"].get<bool>());
+    EXPECT_LT(summary["skin_steps"]["rebuilt"].get<std::size_t>(), 11U);
+    EXPECT_GT(summary["skin_steps"]["candidates_median"].get<double>(),
+              summary["pairs"]["median"].get<double>());
+
+    const auto text = run_smb(folder, {"run", "-n", "1000", "-s", "4", "--pipeline", "detector", "--skin", "0.1"});
+    ASSERT_EQ(text.status, 0) << text.err;
+    EXPECT_NE(text.out.find("skin"), std::string::npos) << text.out;
+    // A skin is a Detector setting.
+    const auto refused = run_smb(folder, {"run", "-n", "100", "-s", "2", "--skin", "0.1"});
+    EXPECT_NE(refused.status, 0);
+    EXPECT_NE(refused.err.find("--pipeline detector"), std::string::npos) << refused.err;
+    EXPECT_NE(run_smb(folder, {"run", "--pipeline", "detector", "--skin", "-1"}).status, 0);
+}
+
 TEST(CliRun, BadArgumentsAreRejected) {
     TempFolder folder;
     EXPECT_NE(run_smb(folder, {"run", "--dim", "4"}).status, 0);
