@@ -86,9 +86,9 @@ public:
     /// Reports every overlapping pair of `input` (box i under id i) to report(i, j). `origin`:
     /// where held coordinates start (held_box.hpp; zero for float input). Returns false, having
     /// reported nothing and released its memory, when the fat boxes make more candidates than
-    /// it will hold (about 32 per box), or when more boxes left their fat boxes since the last
-    /// detection than the moved list may hold (a skin too thin for the motion): the caller then
-    /// detects without a skin.
+    /// it will hold (about 32 per box), or when a quarter of the boxes left their fat boxes
+    /// since the last detection (a skin far too thin for the motion): the caller then detects
+    /// without a skin.
     template <class Report>
     bool detect(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
                 const std::array<Input, Dim>& scene_lo, const std::array<Input, Dim>& scene_hi, double skin,
@@ -248,6 +248,14 @@ private:
             candidate.a = position_of_[candidate.a];
             candidate.b = position_of_[candidate.b];
         }
+        // The list grew by doubling while the pipeline reported: up to twice what it holds.
+        // Kept with a sixteenth of room, as the arrays that follow N (growth.hpp).
+        if (candidates_.capacity() > candidates_.size() + candidates_.size() / 8) {
+            std::vector<Candidate> trimmed;
+            trimmed.reserve(candidates_.size() + candidates_.size() / 16);
+            trimmed.assign(candidates_.begin(), candidates_.end());
+            candidates_.swap(trimmed);
+        }
         gather_held(0);
         state_.assign(n, 0);
         dirty_.assign((n + 63) / 64, 0);
@@ -271,7 +279,7 @@ private:
     enum class Outcome { kept, rebuild, hopeless };
 
     /// One detection on the kept candidates; before reporting anything, rebuild when the moved
-    /// list would outgrow its limit, hopeless when this detection's fresh boxes alone outgrow it.
+    /// list would outgrow its limit, hopeless when a quarter of the boxes left their fat boxes.
     template <class Report>
     Outcome step(Report& report, DetectStats& stats) {
         const auto start = Clock::now();
@@ -298,11 +306,20 @@ private:
             scan.gone.clear();
             scan.newly_moved = 0;
         }
-        // More boxes out of their skin in one detection than the moved list may hold: every
-        // detection would rebuild, and a rebuild costs more than a detection without a skin.
-        if (fresh_.size() > moved_limit(n)) return Outcome::hopeless;
+        // A quarter of the boxes out of their skin in one detection: the skin is far too thin
+        // for the motion, and a rebuild costs more than a detection without it.
+        if (4 * fresh_.size() > n) return Outcome::hopeless;
         if (n > known) newly_moved += n - known;
         if (moved_.size() + newly_moved > moved_limit(n)) return Outcome::rebuild;
+        if (n > known) {
+            // push_back would double each array when it is full: a sixteenth of room instead.
+            const std::size_t positions = slot_of_.size() + (n - known);
+            reserve_with_slack(slot_of_, positions);
+            reserve_with_slack(position_of_, n);
+            reserve_with_slack(held_, positions + 1);
+            reserve_with_slack(fat_, positions);
+            reserve_with_slack(state_, positions);
+        }
         for (std::size_t slot = known; slot < n; ++slot) {
             const auto p = static_cast<Position>(slot_of_.size());
             slot_of_.push_back(static_cast<Slot>(slot));

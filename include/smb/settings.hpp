@@ -49,7 +49,7 @@ struct WorldSettings {
     /// look for new ones. Worth it when boxes move much less than the skin per call (a DEM
     /// code's "neighbour skin"; about the distance a body travels in 10 to 50 steps, and a
     /// fraction of its size): the candidates grow with the skin, the refreshes shrink. It holds
-    /// about 40 bytes per box more, plus 8 per candidate. Where more than N/64 boxes leave
+    /// about 40 bytes per box more, plus 8 per candidate. Where a quarter of the boxes leave
     /// their fat box in one step, the candidates keep being rebuilt (boxes that move farther
     /// than the skin) or would pass 32 per box, the detector steps aside for 64 detections and
     /// detects without the skin. Must be finite and not
