@@ -22,7 +22,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <exception>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -33,6 +32,7 @@
 #include "cut_tree.hpp"
 #include "growth.hpp"
 #include "held_box.hpp"
+#include "ordered_rounds.hpp"
 #include "prefetch.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
@@ -707,71 +707,39 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size
         return moves;
     }
     const std::size_t round = 8 * static_cast<std::size_t>(threads_);
-    const std::size_t rounds = (count + round - 1) / round;
     if (blocks_.size() < 2 * round) blocks_.resize(2 * round);
-    // Round r's blocks: round * (r % 2) onwards; a round is handed on while the next is worked.
-    auto block_of = [&](std::size_t r, std::size_t b) -> BlockOutput& { return blocks_[round * (r % 2) + b]; };
-    auto hand_on = [&](std::size_t r) {
-        const std::size_t first = r * round;
-        for (std::size_t b = 0; b < std::min(round, count - first); ++b) {
-            BlockOutput& block = block_of(r, b);
+    auto block_of = [&](std::size_t item) -> BlockOutput& { return blocks_[item % (2 * round)]; };
+    run_in_ordered_rounds(
+        threads_, count, round,
+        [&](std::size_t item) {
+            BlockOutput& block = block_of(item);
+            block.pairs.clear();
+            block.home.clear();
+            block.overflowed = false;
+            block.moves = 0;
+            auto collect = [&block, this](Position x, Position y) {
+                if (block.pairs.size() >= kBlockPairCap) {
+                    block.overflowed = true;
+                    return;
+                }
+                if (!confirmed(x, y)) return;
+                const BoxId u = id_at(x);
+                const BoxId v = id_at(y);
+                block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
+            };
+            block.moves = work(item, collect, block.home, &block.overflowed);
+        },
+        [&](std::size_t item) {
+            BlockOutput& block = block_of(item);
             if (block.overflowed) {
-                moves += work(first + b, report_ids, home, nullptr);
+                moves += work(item, report_ids, home, nullptr);
             } else {
                 report.append(block.pairs);
                 home.insert(home.end(), block.home.begin(), block.home.end());
                 moves += block.moves;
             }
             if (block.pairs.capacity() > 2 * kBlockPairCap) std::vector<Pair>().swap(block.pairs);
-        }
-    };
-    // The sink may throw: caught on the calling thread, the rounds left are skipped, and it is
-    // thrown again once the threads have joined.
-    std::exception_ptr failure;
-    std::atomic<bool> failed{false};
-#pragma omp parallel num_threads(threads_)
-    {
-        for (std::size_t r = 0; r <= rounds; ++r) {
-#pragma omp master
-            {
-                if (r > 0 && !failed.load(std::memory_order_relaxed)) {
-                    try {
-                        hand_on(r - 1);
-                    } catch (...) {
-                        failure = std::current_exception();
-                        failed.store(true, std::memory_order_relaxed);
-                    }
-                }
-            }
-            if (r < rounds) {
-                const std::size_t first = r * round;
-                const auto in_round = static_cast<std::ptrdiff_t>(std::min(round, count - first));
-                // The barrier at the end of this loop also waits for the hand-over above, so the
-                // next round never writes into blocks that are still being handed on.
-#pragma omp for schedule(dynamic, 1)
-                for (std::ptrdiff_t b = 0; b < in_round; ++b) {
-                    BlockOutput& block = block_of(r, static_cast<std::size_t>(b));
-                    block.pairs.clear();
-                    block.home.clear();
-                    block.overflowed = false;
-                    block.moves = 0;
-                    if (failed.load(std::memory_order_relaxed)) continue;
-                    auto collect = [&block, this](Position x, Position y) {
-                        if (block.pairs.size() >= kBlockPairCap) {
-                            block.overflowed = true;
-                            return;
-                        }
-                        if (!confirmed(x, y)) return;
-                        const BoxId u = id_at(x);
-                        const BoxId v = id_at(y);
-                        block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
-                    };
-                    block.moves = work(first + static_cast<std::size_t>(b), collect, block.home, &block.overflowed);
-                }
-            }
-        }
-    }
-    if (failure) std::rethrow_exception(failure);
+        });
     return moves;
 }
 

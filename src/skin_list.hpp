@@ -28,8 +28,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <exception>
-#include <atomic>
 #include <utility>
 #include <limits>
 #include <span>
@@ -39,6 +37,7 @@
 #include "growth.hpp"
 #include "held_box.hpp"
 #include "id_index.hpp"
+#include "ordered_rounds.hpp"
 #include "persistent_cut_pipeline.hpp"
 #include "prefetch.hpp"
 #include "smb/box.hpp"
@@ -439,10 +438,9 @@ private:
         Block out;  // the single-threaded pass's
     };
 
-    /// Several threads: blocks of candidates in rounds, each block's pairs buffered; while the
-    /// threads test one round, the calling thread hands the previous one to the report (so the
-    /// caller's sink runs on the calling thread only, in list order). A throwing sink is caught
-    /// and thrown again once the threads have joined.
+    /// Several threads: blocks of candidates in rounds, each block's pairs buffered, handed to
+    /// the report in list order on the calling thread (ordered_rounds.hpp). After a throwing
+    /// sink the blocks left are not tested; the list is rebuilt at the next detection anyway.
     template <class Report>
     void test_in_rounds(Report& report, bool dropping) {
         const std::size_t count = candidates_.size();
@@ -450,53 +448,27 @@ private:
         if (workers_.size() < threads) workers_.resize(threads);
         const std::size_t blocks = (count + kBlockCandidates - 1) / kBlockCandidates;
         const std::size_t round = 4 * threads;
-        const std::size_t rounds = (blocks + round - 1) / round;
         if (blocks_.size() < 2 * round) blocks_.resize(2 * round);
-        auto block_of = [&](std::size_t r, std::size_t b) -> Block& { return blocks_[round * (r % 2) + b]; };
-        std::exception_ptr failure;
-        std::atomic<bool> failed{false};
-        auto hand_on = [&](std::size_t r) {
-            for (std::size_t b = 0; b < std::min(round, blocks - r * round); ++b) {
-                Block& block = block_of(r, b);
+        auto block_of = [&](std::size_t item) -> Block& { return blocks_[item % (2 * round)]; };
+        run_in_ordered_rounds(
+            threads_, blocks, round,
+            [&](std::size_t item) {
+                Block& block = block_of(item);
+                block.pairs.clear();
+                block.retested = 0;
+                block.tombstones = 0;
+                const std::size_t first = item * kBlockCandidates;
+                Worker& worker = workers_[static_cast<std::size_t>(omp_thread())];
+                std::swap(worker.out, block);
+                test_range(first, std::min(first + kBlockCandidates, count), dropping, worker, [] {});
+                std::swap(worker.out, block);
+            },
+            [&](std::size_t item) {
+                Block& block = block_of(item);
                 retested_ += block.retested;
                 tombstones_ += block.tombstones;
-                if (!failed.load(std::memory_order_relaxed)) report.append(block.pairs);
-            }
-        };
-#pragma omp parallel num_threads(threads_)
-        {
-            for (std::size_t r = 0; r <= rounds; ++r) {
-#pragma omp master
-                {
-                    if (r > 0) {
-                        try {
-                            hand_on(r - 1);
-                        } catch (...) {
-                            failure = std::current_exception();
-                            failed.store(true, std::memory_order_relaxed);
-                        }
-                    }
-                }
-                if (r < rounds) {
-                    const auto in_round = static_cast<std::ptrdiff_t>(std::min(round, blocks - r * round));
-                    // The barrier at the end of this loop also waits for the hand-over above.
-#pragma omp for schedule(dynamic, 1)
-                    for (std::ptrdiff_t b = 0; b < in_round; ++b) {
-                        Block& block = block_of(r, static_cast<std::size_t>(b));
-                        block.pairs.clear();
-                        block.retested = 0;
-                        block.tombstones = 0;
-                        const std::size_t first = (r * round + static_cast<std::size_t>(b)) * kBlockCandidates;
-                        // Tombstones are still made after a failure, so that the list stays true.
-                        Worker& worker = workers_[static_cast<std::size_t>(omp_thread())];
-                        std::swap(worker.out, block);
-                        test_range(first, std::min(first + kBlockCandidates, count), dropping, worker, [] {});
-                        std::swap(worker.out, block);
-                    }
-                }
-            }
-        }
-        if (failure) std::rethrow_exception(failure);
+                report.append(block.pairs);
+            });
     }
 
     /// Candidates [first, last) into worker.out; flush() is called whenever a run of hits has

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "reference/brute_force.hpp"
+#include "reference/detector_shapes.hpp"
 #include "reference/pair_check.hpp"
 #include "reference/random_boxes.hpp"
 #include "smb/detector.hpp"
@@ -119,20 +120,6 @@ protected:
     }
 };
 
-template <typename Real, int Dim>
-struct Shape {
-    using real_type = Real;
-    static constexpr int dimension = Dim;
-};
-using Shapes = ::testing::Types<Shape<float, 2>, Shape<double, 2>, Shape<float, 3>, Shape<double, 3>>;
-class ShapeNames {
-public:
-    template <typename T>
-    static std::string GetName(int) {
-        return std::string(std::is_same_v<typename T::real_type, float> ? "float" : "double") +
-               std::to_string(T::dimension) + "d";
-    }
-};
 TYPED_TEST_SUITE(DetectorTest, Shapes, ShapeNames);
 
 TYPED_TEST(DetectorTest, MatchesBruteForceOnEveryKindOfSceneOverManySteps) {

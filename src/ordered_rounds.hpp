@@ -1,0 +1,58 @@
+#pragma once
+// Work shared among threads whose results must reach the caller in order, on the calling
+// thread: the cell checks of the persistent-cut pipeline (columns) and the skin list's pass
+// over its candidates (blocks).
+
+#include <atomic>
+#include <cstddef>
+#include <exception>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace smb::detail {
+
+/// Runs work(item) for items 0..count-1 on `threads` threads, in rounds of `round` items, and
+/// hand_on(item) for every item in item order on the calling thread, one round behind: while
+/// the threads work on round r, the calling thread hands round r - 1 on. Item i may keep its
+/// results in buffer i % (2 * round): a buffer is written again only after it was handed on.
+/// hand_on may throw (a caller's sink): the exception is caught, the work and hand-ons left are
+/// skipped, and it is thrown again once the threads have joined.
+template <class Work, class HandOn>
+void run_in_ordered_rounds(int threads, std::size_t count, std::size_t round, Work&& work, HandOn&& hand_on) {
+    const std::size_t rounds = (count + round - 1) / round;
+    std::exception_ptr failure;
+    std::atomic<bool> failed{false};
+#pragma omp parallel num_threads(threads)
+    {
+        for (std::size_t r = 0; r <= rounds; ++r) {
+#pragma omp master
+            {
+                if (r > 0 && !failed.load(std::memory_order_relaxed)) {
+                    try {
+                        for (std::size_t item = (r - 1) * round; item < count && item < r * round; ++item)
+                            hand_on(item);
+                    } catch (...) {
+                        failure = std::current_exception();
+                        failed.store(true, std::memory_order_relaxed);
+                    }
+                }
+            }
+            if (r < rounds) {
+                const std::size_t first = r * round;
+                const auto in_round = static_cast<std::ptrdiff_t>(count - first < round ? count - first : round);
+                // The barrier at the end of this loop also waits for the hand-over above, so the
+                // next round never writes into buffers that are still being handed on.
+#pragma omp for schedule(dynamic, 1)
+                for (std::ptrdiff_t b = 0; b < in_round; ++b) {
+                    if (failed.load(std::memory_order_relaxed)) continue;
+                    work(first + static_cast<std::size_t>(b));
+                }
+            }
+        }
+    }
+    if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace smb::detail
