@@ -51,14 +51,9 @@
 
 namespace smb::detail {
 
-[[nodiscard]] inline int omp_thread() noexcept {
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-}
-[[nodiscard]] inline int omp_threads() noexcept {
+/// Threads in the parallel region under way (1 outside one, or without OpenMP); this_thread()
+/// (persistent_cut_pipeline.hpp) is the calling thread's number among them.
+[[nodiscard]] inline int team_size() noexcept {
 #ifdef _OPENMP
     return omp_get_num_threads();
 #else
@@ -290,8 +285,8 @@ private:
         const std::size_t count = slot_of_.size();
 #pragma omp parallel num_threads(threads_) if (threads_ > 1 && count >= kParallelFrom)
         {
-            const auto thread = static_cast<std::size_t>(omp_thread());
-            const std::size_t shares = static_cast<std::size_t>(omp_threads());
+            const auto thread = static_cast<std::size_t>(this_thread());
+            const std::size_t shares = static_cast<std::size_t>(team_size());
             scan(count * thread / shares, count * (thread + 1) / shares, scans_[thread]);
         }
         fresh_.clear();
@@ -458,7 +453,7 @@ private:
                 block.retested = 0;
                 block.tombstones = 0;
                 const std::size_t first = item * kBlockCandidates;
-                Worker& worker = workers_[static_cast<std::size_t>(omp_thread())];
+                Worker& worker = workers_[static_cast<std::size_t>(this_thread())];
                 std::swap(worker.out, block);
                 test_range(first, std::min(first + kBlockCandidates, count), dropping, worker, [] {});
                 std::swap(worker.out, block);
