@@ -60,25 +60,32 @@ BENCHMARK(paper_step<2>)->ArgNames({"N", "Lambda_e6"})->Args({200000, 1000})
 template <int Dim>
 void paper_step_detector(benchmark::State& state) {
     smb::workload::DynamicEnvironment<Dim> environment(paper_params(state));
+    smb::WorldSettings settings;
+    if (state.range(2) > 0) settings.skin = static_cast<double>(state.range(2)) * 1e-3;
     smb::workload::SwapRemoveMirror<smb::Box<double, Dim>> mirror;
     auto follow = [&] {
         const auto& changes = environment.changes();
         mirror.follow(changes.removed_ids, changes.inserted_ids, environment.ids(), environment.boxes());
     };
     follow();
-    smb::Detector<double, Dim> detector;
+    smb::Detector<double, Dim> detector(settings);
     std::vector<smb::Pair> pairs;
     detector.detect(mirror.boxes(), pairs);  // the build step is not what this measures
     for (auto _ : state) {
         environment.step();
         follow();
-        report(state, detector.detect(mirror.boxes(), pairs));
+        const smb::DetectStats stats = detector.detect(mirror.boxes(), pairs);
+        report(state, stats);
+        state.counters["skin_rebuilt"] = stats.skin_rebuilt ? 1 : 0;
     }
 }
-BENCHMARK(paper_step_detector<3>)->ArgNames({"N", "Lambda_e6"})
-    ->Args({100000, 1000})->Args({200000, 1000})->Args({200000, 10000})->Args({200000, 100000})
+// Args: N, Λ·1e6, and the skin (WorldSettings::skin) in thousandths, 0 for none.
+BENCHMARK(paper_step_detector<3>)->ArgNames({"N", "Lambda_e6", "skin_e3"})
+    ->Args({100000, 1000, 0})->Args({200000, 1000, 0})->Args({200000, 10000, 0})->Args({200000, 100000, 0})
+    ->Args({200000, 10, 0})->Args({200000, 10, 100})->Args({200000, 1000, 100})
     ->Iterations(10)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(paper_step_detector<2>)->ArgNames({"N", "Lambda_e6"})->Args({200000, 1000})
+BENCHMARK(paper_step_detector<2>)->ArgNames({"N", "Lambda_e6", "skin_e3"})
+    ->Args({200000, 1000, 0})->Args({200000, 10, 0})->Args({200000, 10, 100})
     ->Iterations(10)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 /// Scenes of the deviations in docs/algorithm.md, 3D, N = arg boxes of sides in [0.4, 1].
