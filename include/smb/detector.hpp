@@ -47,6 +47,11 @@ enum class HeldPrecision {
 /// last_precision() says which. The choice is made again when the scene outgrows the region it
 /// was made for, or the number of boxes changes by more than a quarter.
 ///
+/// Skin: with WorldSettings::skin > 0 it also keeps, between calls, each box's fat box (grown by
+/// the skin), a float copy of the boxes, and the pairs of fat boxes that overlap; a call then
+/// checks each box against its fat box and tests those pairs only, which pays while boxes move
+/// much less than the skin per call (docs/algorithm.md, docs/performance.md "The skin").
+///
 /// Errors: detect() checks every box before it changes anything; a box with NaN, infinity or
 /// min > max throws InvalidBoxError naming its index, and the detector stays as it was.
 /// WorldSettings::pipeline must be Pipeline::persistent_cuts (ArgumentError otherwise).
