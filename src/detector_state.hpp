@@ -41,8 +41,6 @@ public:
         rounded_ = RoundedPipeline();
         skin_.clear();
         skin_pause_ = 0;
-        kept_since_rebuild_ = kShortLife;
-        short_lives_ = 0;
         retested_ = 0;
         std::vector<Pair>().swap(chunk_);
         judged_ = false;
@@ -55,9 +53,9 @@ public:
         const auto start = Clock::now();
         DetectStats stats;
         stats.boxes = boxes.size();
+        SceneBounds<Real, Dim> bounds;
         if (!boxes.empty()) {
-            const SceneBounds<Real, Dim> bounds = checked_bounds(boxes);  // throws before any change
-            bounds_ = bounds;
+            bounds = checked_bounds(boxes);  // throws before any change
             if constexpr (kMayRound) choose_precision(boxes, bounds);
             else precision_ = HeldPrecision::floats;
         }
@@ -72,7 +70,7 @@ public:
             skin_.clear();
             precision_ = HeldPrecision::none;
             judged_ = false;
-        } else if (!detected_with_skin(boxes, bounds_, output, stats)) {
+        } else if (!detected_with_skin(boxes, bounds, output, stats)) {
             if (uses_rounded()) {
                 rounded_.forget_slots_from(boxes.size());
                 rounded_.detect(boxes, {}, settings_, output, stats);
@@ -101,9 +99,8 @@ private:
     using RoundedPipeline = std::conditional_t<kMayRound, PersistentCutPipeline<float, Dim, Real>, ExactPipeline>;
 
     /// With a skin, on floats (the input's own, or double input that floats resolve): the skin
-    /// list detects, and the pipelines give their memory back. When its candidates outgrow it
-    /// (a skin far too wide for the scene), or they keep being rebuilt (boxes that move too far
-    /// for the skin), it steps aside for kSkinPause detections.
+    /// list detects, and the pipelines give their memory back when it (re)builds. When it steps
+    /// aside (SkinList::detect()), the pipelines detect for kSkinPause detections.
     bool detected_with_skin(std::span<const Box<Real, Dim>> boxes, const SceneBounds<Real, Dim>& bounds,
                             PairOutput& output, DetectStats& stats) {
         if (settings_.skin == 0 || precision_ != HeldPrecision::floats) {
@@ -120,24 +117,12 @@ private:
             skin_pause_ = kSkinPause;
             return false;
         }
-        // Candidates rebuilt again before they served kShortLife detections, twice running: the
-        // boxes move too far for the skin, and a rebuild costs more than a detection without it.
-        if (stats.skin_rebuilt) {
-            if (kept_since_rebuild_ < kShortLife && ++short_lives_ >= 2) {
-                skin_.clear();
-                skin_pause_ = kSkinPause;
-                short_lives_ = 0;
-            } else if (kept_since_rebuild_ >= kShortLife) {
-                short_lives_ = 0;
-            }
-            kept_since_rebuild_ = 0;
-        } else {
-            ++kept_since_rebuild_;
-        }
         retested_ = skin_.retested();
-        exact_ = ExactPipeline();
-        rounded_ = RoundedPipeline();
-        if constexpr (kMayRound) rounded_.set_origin(judgement_.origin);
+        if (stats.skin_rebuilt) {  // a (re)build is the first skin detection after the pipelines' ones
+            exact_ = ExactPipeline();
+            rounded_ = RoundedPipeline();
+            if constexpr (kMayRound) rounded_.set_origin(judgement_.origin);
+        }
         return true;
     }
 
@@ -174,16 +159,12 @@ private:
 
     static constexpr std::size_t kJudgeEvery = 64;
     static constexpr std::size_t kSkinPause = 64;
-    static constexpr std::size_t kShortLife = 4;
 
     WorldSettings settings_;
     ExactPipeline exact_;
     RoundedPipeline rounded_;
     SkinList<Real, Dim> skin_;
-    SceneBounds<Real, Dim> bounds_;  // of the detection under way
     std::size_t skin_pause_ = 0;
-    std::size_t kept_since_rebuild_ = kShortLife;  // the first build is no short life
-    std::size_t short_lives_ = 0;
     std::size_t retested_ = 0;
     FloatResolution<Real, Dim> judgement_;
     bool judged_ = false;

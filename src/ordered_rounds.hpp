@@ -13,6 +13,23 @@
 
 namespace smb::detail {
 
+/// The calling thread's number in the parallel region under way (0 outside one, or without
+/// OpenMP), and the number of threads in it (1 then).
+[[nodiscard]] inline int this_thread() noexcept {
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
+}
+[[nodiscard]] inline int team_size() noexcept {
+#ifdef _OPENMP
+    return omp_get_num_threads();
+#else
+    return 1;
+#endif
+}
+
 /// Runs work(item) for items 0..count-1 on `threads` threads, in rounds of `round` items, and
 /// hand_on(item) for every item in item order on the calling thread, one round behind: while
 /// the threads work on round r, the calling thread hands round r - 1 on. Item i may keep its

@@ -191,6 +191,9 @@ private:
                              const bool* give_up) const;
     template <class Visit>
     void for_each_cell_covering(const Box<Real, Dim>& box, Visit&& visit) const;
+    template <class Visit>
+    void for_each_cell_box_overlapping(const Box<Real, Dim>& query, std::span<const Box<Real, Dim>> boxes,
+                                       Visit&& visit, const bool* give_up = nullptr) const;
     CellFloor<Real, Dim> floor_of_cell(std::size_t cell) const;
     void check_invariants(std::span<const Box<Real, Dim>> boxes) const;
 
@@ -389,14 +392,6 @@ void PersistentCutPipeline<Real, Dim, Input>::plan_threads(const WorldSettings& 
 #endif
     threads_ = std::max(threads_, 1);
     if (workers_.size() != static_cast<std::size_t>(threads_)) workers_.resize(static_cast<std::size_t>(threads_));
-}
-
-[[nodiscard]] inline int this_thread() noexcept {
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
 }
 
 template <std::floating_point Real, int Dim, std::floating_point Input>
@@ -821,48 +816,50 @@ template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Collect>
 void PersistentCutPipeline<Real, Dim, Input>::check_one_oversized(std::size_t index, std::span<const Box<Real, Dim>> boxes,
                                                           Collect& collect, const bool* give_up) const {
-    const std::vector<Position>& cells = lists_[cells_list_];
-    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
     const std::vector<Position>& sorted = oversized_list_;  // in x order (detect())
     const Position big = sorted[index];
     const Box<Real, Dim>& a = boxes[big];
-    for_each_cell_covering(a, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
-        if (give_up != nullptr && *give_up) return;
-        for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
-            const Box<Real, Dim>& b = boxes[cells[i]];
-            if (!overlaps(a, b)) continue;
-            bool owned = true;
-            for (int axis = 0; axis < Dim; ++axis)
-                owned = owned && (a.min[axis] >= floor[axis] || b.min[axis] >= floor[axis]);
-            if (owned) collect(big, cells[i]);
-        }
-    });
+    for_each_cell_box_overlapping(a, boxes, [&](Position other) { collect(big, other); }, give_up);
     for (std::size_t j = index + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
         if (overlaps(a, boxes[sorted[j]])) collect(big, sorted[j]);
     }
 }
 
+/// Calls visit(position) for every box registered in the cells `query` covers whose box in
+/// `boxes` overlaps `query`, once: a box registered in several of those cells is visited by the
+/// cell holding the lower corner of the two boxes' intersection (the cells' own rule: every box
+/// registered in a cell, and `query`, have min below the cell's upper plane on every axis).
+/// Stops early once *give_up is set.
+template <std::floating_point Real, int Dim, std::floating_point Input>
+template <class Visit>
+void PersistentCutPipeline<Real, Dim, Input>::for_each_cell_box_overlapping(const Box<Real, Dim>& query,
+                                                                            std::span<const Box<Real, Dim>> boxes,
+                                                                            Visit&& visit, const bool* give_up) const {
+    const std::vector<Position>& cells = lists_[cells_list_];
+    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
+    for_each_cell_covering(query, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
+        if (give_up != nullptr && *give_up) return;
+        for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
+            const Box<Real, Dim>& box = boxes[cells[i]];
+            if (!overlaps(query, box)) continue;
+            bool owned = true;
+            for (int axis = 0; axis < Dim; ++axis)
+                owned = owned && (query.min[axis] >= floor[axis] || box.min[axis] >= floor[axis]);
+            if (owned) visit(cells[i]);
+        }
+    });
+}
+
 /// After detect(), next_order_ holds the order the cells and ordered_ were built on: position
-/// to slot. A box registered in several cells the query covers is visited by the cell holding the
-/// lower corner of the two boxes' intersection only, as in check_one_oversized().
+/// to slot.
 template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Visit>
 void PersistentCutPipeline<Real, Dim, Input>::for_each_held_overlapping(const Box<Real, Dim>& query,
                                                                         Visit&& visit) const {
     if (cuts_.segments() == 0 || ordered_.empty()) return;
-    const std::vector<Position>& cells = lists_[cells_list_];
-    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
     const std::vector<Slot>& slot_at = next_order_;
-    for_each_cell_covering(query, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
-        for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
-            const Box<Real, Dim>& held = ordered_[cells[i]];
-            if (!overlaps(query, held)) continue;
-            bool owned = true;
-            for (int axis = 0; axis < Dim; ++axis)
-                owned = owned && (query.min[axis] >= floor[axis] || held.min[axis] >= floor[axis]);
-            if (owned) visit(slot_at[cells[i]]);
-        }
-    });
+    for_each_cell_box_overlapping(query, std::span<const Box<Real, Dim>>(ordered_),
+                                  [&](Position position) { visit(slot_at[position]); });
     for (const Position big : oversized_list_) {
         if (ordered_[big].min[0] > query.max[0]) break;  // in x order (run_levels())
         if (overlaps(query, ordered_[big])) visit(slot_at[big]);

@@ -28,7 +28,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <utility>
 #include <limits>
 #include <span>
 #include <type_traits>
@@ -46,20 +45,10 @@
 #include "smb/stats.hpp"
 
 #ifdef _OPENMP
-#include <omp.h>
+#include <omp.h>  // omp_get_max_threads
 #endif
 
 namespace smb::detail {
-
-/// Threads in the parallel region under way (1 outside one, or without OpenMP); this_thread()
-/// (persistent_cut_pipeline.hpp) is the calling thread's number among them.
-[[nodiscard]] inline int team_size() noexcept {
-#ifdef _OPENMP
-    return omp_get_num_threads();
-#else
-    return 1;
-#endif
-}
 
 /// `value` rounded down (or up) to a float, clamped to the finite floats: the fat box's ends,
 /// so that it always contains the held box it was grown from.
@@ -80,9 +69,10 @@ public:
     /// Reports every overlapping pair of `input` (box i under id i) to report(i, j). `origin`:
     /// where held coordinates start (held_box.hpp; zero for float input). Returns false, having
     /// reported nothing and released its memory, when the fat boxes make more candidates than
-    /// it will hold (about 32 per box), or when a quarter of the boxes left their fat boxes
-    /// since the last detection (a skin far too thin for the motion): the caller then detects
-    /// without a skin.
+    /// it will hold (about 32 per box), when a quarter of the boxes left their fat boxes since
+    /// the last detection (a skin far too thin for the motion), or after the candidates were
+    /// rebuilt twice running before serving kShortLife detections (a rebuild costs more than a
+    /// detection without a skin): the caller then detects without a skin.
     template <class Report>
     bool detect(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
                 const std::array<Input, Dim>& scene_lo, const std::array<Input, Dim>& scene_hi, double skin,
@@ -96,6 +86,10 @@ public:
         refreshed_ = 0;
         rebuilt_ = false;
         const std::size_t n = input.size();
+        if (exhausted_) {
+            clear();
+            return false;
+        }
         const bool stale = !built_ || origin != origin_ || skin != skin_ || 4 * n > 5 * rebuilt_boxes_ ||
                            5 * n < 4 * rebuilt_boxes_;
         try {
@@ -120,23 +114,8 @@ public:
         stats.skin_candidates = candidates_.size() - tombstones_;
         stats.skin_refreshed = refreshed_;
         stats.skin_rebuilt = rebuilt_;
+        count_life();
         return true;
-    }
-
-    /// A held coordinate h of shifted coordinate v = fl(x - origin), |v| <= M, is within
-    /// ulp(M) / 2 <= 2^-24 M (plus half the smallest subnormal) of v. Where the float difference
-    /// of two held coordinates is at least M 2^-21 (plus 2^-140), their exact difference exceeds
-    /// both errors together, so the shifted coordinates are in the same order, and the inputs
-    /// too (the shift is monotone): held boxes that overlap by that margin hold input boxes that
-    /// overlap.
-    [[nodiscard]] static float sure_margin(const std::array<Input, Dim>& origin, const std::array<Input, Dim>& lo,
-                                           const std::array<Input, Dim>& hi) noexcept {
-        double largest = 0;
-        for (int k = 0; k < Dim; ++k) {
-            largest = std::max(largest, std::abs(static_cast<double>(lo[k] - origin[k])));
-            largest = std::max(largest, std::abs(static_cast<double>(hi[k] - origin[k])));
-        }
-        return float_above(std::ldexp(largest, -21) + std::ldexp(1.0, -140));
     }
 
     /// Pairs the held floats could not settle, tested again on the input, in the last detection.
@@ -162,9 +141,9 @@ private:
         std::size_t bytes = 0;
         for (const Scan& scan : scans_) bytes += (scan.fresh.capacity() + scan.gone.capacity()) * sizeof(Position);
         for (const Worker& worker : workers_)
-            bytes += worker.hits.capacity() * sizeof(Candidate) + worker.sure.capacity() +
-                     worker.out.pairs.capacity() * sizeof(Pair);
+            bytes += worker.hits.capacity() * sizeof(Candidate) + worker.sure.capacity();
         for (const Block& block : blocks_) bytes += block.pairs.capacity() * sizeof(Pair);
+        bytes += serial_.pairs.capacity() * sizeof(Pair);
         return bytes;
     }
     using Position = std::uint32_t;
@@ -193,6 +172,40 @@ private:
     static constexpr std::uint8_t kDone = 8;   // fresh, and its new candidates are found already
 
     static constexpr bool kExact = std::same_as<Input, float>;  // held boxes are the input's own
+
+    /// A held coordinate h of shifted coordinate v = fl(x - origin), |v| <= M, is within
+    /// ulp(M) / 2 <= 2^-24 M (plus half the smallest subnormal) of v. Where the float difference
+    /// of two held coordinates is at least M 2^-21 (plus 2^-140), their exact difference exceeds
+    /// both errors together, so the shifted coordinates are in the same order, and the inputs
+    /// too (the shift is monotone): held boxes that overlap by that margin hold input boxes that
+    /// overlap.
+    [[nodiscard]] static float sure_margin(const std::array<Input, Dim>& origin, const std::array<Input, Dim>& lo,
+                                           const std::array<Input, Dim>& hi) noexcept {
+        double largest = 0;
+        for (int k = 0; k < Dim; ++k) {
+            largest = std::max(largest, std::abs(static_cast<double>(lo[k] - origin[k])));
+            largest = std::max(largest, std::abs(static_cast<double>(hi[k] - origin[k])));
+        }
+        return float_above(std::ldexp(largest, -21) + std::ldexp(1.0, -140));
+    }
+
+    /// A life: the detections the candidates served between two rebuilds. Two short ones
+    /// running, and the next detect() steps aside (after this one has reported its pairs).
+    static constexpr std::size_t kShortLife = 4;
+    void count_life() {
+        if (!rebuilt_) {
+            ++kept_since_rebuild_;
+            return;
+        }
+        if (kept_since_rebuild_ >= kShortLife) {
+            short_lives_ = 0;
+        } else if (++short_lives_ >= 2) {
+            clear();
+            exhausted_ = true;
+            return;
+        }
+        kept_since_rebuild_ = 0;
+    }
 
     [[nodiscard]] static std::size_t candidate_cap(std::size_t n) noexcept { return 32 * n + (std::size_t{1} << 20); }
     /// The moved list is tested against every fresh box: past this length a rebuild is cheaper.
@@ -250,7 +263,7 @@ private:
             trimmed.assign(candidates_.begin(), candidates_.end());
             candidates_.swap(trimmed);
         }
-        gather_held(0);
+        gather_held();
         state_.assign(n, 0);
         dirty_.assign((n + 63) / 64, 0);
         moved_.clear();
@@ -260,13 +273,14 @@ private:
         return true;
     }
 
-    /// held_[p] from the caller's box at slot_of_[p], for p from `first` on.
-    void gather_held(std::size_t first) {
+    /// held_[p] from the caller's box at slot_of_[p], for every position (right after a
+    /// rebuild, when every slot is in the array).
+    void gather_held() {
         const std::size_t count = slot_of_.size();
         constexpr std::size_t ahead = 32;
-        for (std::size_t p = first; p < count; ++p) {
-            if (p + ahead < count && slot_of_[p + ahead] < input_.size()) prefetch_whole(&input_[slot_of_[p + ahead]]);
-            if (slot_of_[p] < input_.size()) held_[p] = held_box<Input, Dim>(input_[slot_of_[p]], origin_);
+        for (std::size_t p = 0; p < count; ++p) {
+            if (p + ahead < count) prefetch_whole(&input_[slot_of_[p + ahead]]);
+            held_[p] = held_box<Input, Dim>(input_[slot_of_[p]], origin_);
         }
     }
 
@@ -380,15 +394,19 @@ private:
         }
     }
 
+    /// Held boxes at a and b overlap: true when their input boxes do too. `sure`: the floats
+    /// proved it (overlap_bits()); otherwise the input is asked, and `retested` counts it.
+    [[nodiscard]] bool confirmed(Position a, Position b, bool sure, std::size_t& retested) const {
+        if (kExact || sure) return true;
+        ++retested;
+        return overlaps(input_[slot_of_[a]], input_[slot_of_[b]]);
+    }
+
     template <class Report>
     void test(Position a, Position b, Report& report) {
         const std::uint32_t bits = overlap_bits(&held_[a], &held_[b]);
-        if ((bits & 1U) == 0) return;
-        if (!kExact && (bits & 2U) == 0) {
-            ++retested_;
-            if (!overlaps(input_[slot_of_[a]], input_[slot_of_[b]])) return;
-        }
-        report(BoxId{slot_of_[a]}, BoxId{slot_of_[b]});
+        if ((bits & 1U) != 0 && confirmed(a, b, (bits & 2U) != 0, retested_))
+            report(BoxId{slot_of_[a]}, BoxId{slot_of_[b]});
     }
 
     /// Tests every candidate, after dropping those of boxes marked in dirty_ when `dropping`,
@@ -401,16 +419,17 @@ private:
         const std::size_t count = candidates_.size();
         if (threads_ == 1 || count < kParallelFrom) {
             if (workers_.empty()) workers_.resize(1);
-            Block& out = workers_[0].out;
+            Block& out = serial_;
             out.pairs.clear();
-            test_range(0, count, dropping, workers_[0], [&] {
+            out.retested = 0;
+            out.tombstones = 0;
+            test_range(0, count, dropping, workers_[0], out, [&] {
                 report.append(out.pairs);
                 out.pairs.clear();
             });
             report.append(out.pairs);
             retested_ += out.retested;
             tombstones_ += out.tombstones;
-            out = Block{std::move(out.pairs)};
         } else {
             test_in_rounds(report, dropping);
         }
@@ -430,7 +449,6 @@ private:
     struct Worker {
         std::vector<Candidate> hits;
         std::vector<std::uint8_t> sure;
-        Block out;  // the single-threaded pass's
     };
 
     /// Several threads: blocks of candidates in rounds, each block's pairs buffered, handed to
@@ -453,10 +471,8 @@ private:
                 block.retested = 0;
                 block.tombstones = 0;
                 const std::size_t first = item * kBlockCandidates;
-                Worker& worker = workers_[static_cast<std::size_t>(this_thread())];
-                std::swap(worker.out, block);
-                test_range(first, std::min(first + kBlockCandidates, count), dropping, worker, [] {});
-                std::swap(worker.out, block);
+                test_range(first, std::min(first + kBlockCandidates, count), dropping,
+                           workers_[static_cast<std::size_t>(this_thread())], block, [] {});
             },
             [&](std::size_t item) {
                 Block& block = block_of(item);
@@ -466,11 +482,11 @@ private:
             });
     }
 
-    /// Candidates [first, last) into worker.out; flush() is called whenever a run of hits has
-    /// become pairs. Branch-free over the candidates (about half of them overlap, which no
-    /// predictor guesses).
+    /// Candidates [first, last) into `out`; flush() is called whenever a run of hits has become
+    /// pairs. Branch-free over the candidates (about half of them overlap, which no predictor
+    /// guesses).
     template <class Flush>
-    void test_range(std::size_t first, std::size_t last, bool dropping, Worker& worker, Flush&& flush) {
+    void test_range(std::size_t first, std::size_t last, bool dropping, Worker& worker, Block& out, Flush&& flush) {
         constexpr std::size_t kRun = 2048;
         worker.hits.resize(kRun);
         worker.sure.resize(kRun);
@@ -486,7 +502,7 @@ private:
                                                     (dirty[candidate.b >> 6] >> (candidate.b & 63))) & 1U);
                 if (keep == 0 && candidate.a != candidate.b) {
                     candidates[i] = Candidate{candidate.a, candidate.a};
-                    ++worker.out.tombstones;
+                    ++out.tombstones;
                 }
             }
             const std::uint32_t bits = overlap_bits(held + candidate.a, held + candidate.b);
@@ -494,26 +510,23 @@ private:
             worker.sure[hits] = static_cast<std::uint8_t>(bits >> 1);
             hits += keep & bits;
             if (hits == kRun) {
-                pairs_of_hits(hits, worker);
+                pairs_of_hits(hits, worker, out);
                 flush();
                 hits = 0;
             }
         }
-        pairs_of_hits(hits, worker);
+        pairs_of_hits(hits, worker, out);
     }
 
     /// The pairs of a run of hits, each confirmed on the input where the floats cannot settle it.
-    void pairs_of_hits(std::size_t hits, Worker& worker) const {
+    void pairs_of_hits(std::size_t hits, const Worker& worker, Block& out) const {
         for (std::size_t i = 0; i < hits; ++i) {
             const Candidate hit = worker.hits[i];
             if (hit.a == hit.b) continue;  // a tombstone
-            if (!kExact && worker.sure[i] == 0) {
-                ++worker.out.retested;
-                if (!overlaps(input_[slot_of_[hit.a]], input_[slot_of_[hit.b]])) continue;
-            }
+            if (!confirmed(hit.a, hit.b, worker.sure[i] != 0, out.retested)) continue;
             const BoxId a = slot_of_[hit.a];
             const BoxId b = slot_of_[hit.b];
-            worker.out.pairs.push_back(a < b ? Pair{a, b} : Pair{b, a});
+            out.pairs.push_back(a < b ? Pair{a, b} : Pair{b, a});
         }
     }
 
@@ -557,6 +570,7 @@ private:
     void find_candidates_of(Position p, Report& report) {
         const Held fat = fat_[p];
         auto add = [&](Position q) {
+            reserve_with_slack(candidates_, candidates_.size() + 1);  // not doubling the list
             candidates_.push_back(Candidate{p, q});
             test(p, q, report);
         };
@@ -582,6 +596,9 @@ private:
     std::size_t retested_ = 0;
     std::size_t refreshed_ = 0;
     std::size_t tombstones_ = 0;  // candidates dropped in place (a pair of a position with itself)
+    std::size_t kept_since_rebuild_ = kShortLife;  // the first build ends no life
+    std::size_t short_lives_ = 0;                  // running
+    bool exhausted_ = false;                       // step aside at the next detect()
 
     PersistentCutPipeline<float, Dim, float> cells_;  // over the fat boxes of the last rebuild
     std::vector<Held> fat_;              // per position
@@ -598,6 +615,7 @@ private:
     std::vector<Scan> scans_;            // per thread
     std::vector<Worker> workers_;        // per thread
     std::vector<Block> blocks_;          // two rounds of blocks of candidates (several threads)
+    Block serial_;                       // the pass on one thread
 };
 
 }  // namespace smb::detail
