@@ -86,6 +86,12 @@ TEST(CliRun, JsonSummaryOfASmallRun) {
     EXPECT_EQ(summary["boxes"]["initial"], 2000);
     EXPECT_DOUBLE_EQ(summary["packing_density"].get<double>(), 0.4);
     EXPECT_GT(summary["build_seconds"].get<double>(), 0);
+    // The build's phases are parts of it; the first detection always cuts (sort > 0).
+    const auto& build_phases = summary["build_phase_seconds"];
+    EXPECT_GT(build_phases["sort"].get<double>(), 0);
+    EXPECT_LE(build_phases["sort"].get<double>() + build_phases["cut_regroup"].get<double>() +
+                  build_phases["check"].get<double>(),
+              summary["build_seconds"].get<double>());
     EXPECT_LE(summary["detect_seconds"]["min"].get<double>(),
               summary["detect_seconds"]["median"].get<double>());
     EXPECT_GE(summary["detect_cpu_seconds"]["median"].get<double>(), 0);

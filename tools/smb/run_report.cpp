@@ -80,7 +80,12 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
         run.dimension, run.initial_boxes, run.final_boxes, run.packing_density, run.cube_side,
         run.size_ratio, run.update_factor, run.steps.size(), run.seed);
     line("pipeline", fmt::format("{}, {} thread{}", run.pipeline, run.threads, run.threads == 1 ? "" : "s"));
-    if (!run.steps.empty()) line("build (step 1)", duration_text(run.steps.front().detect_seconds));
+    if (!run.steps.empty()) {
+        const StepRecord& build = run.steps.front();
+        line("build (step 1)", fmt::format("{} (sort {}, cut+regroup {}, check {})", duration_text(build.detect_seconds),
+                                           duration_text(sort_time(build)), duration_text(cut_time(build)),
+                                           duration_text(check_time(build))));
+    }
     if (run.steps.size() >= 2) {
         const Spread detect = spread_after_build(run, detect_time);
         line(fmt::format("detect ({} steps)", run.steps.size() - 1),
@@ -170,6 +175,11 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     }
     summary["build_seconds"] =
         run.steps.empty() ? json(nullptr) : json(run.steps.front().detect_seconds);
+    summary["build_phase_seconds"] =
+        run.steps.empty() ? json(nullptr)
+                          : json{{"sort", sort_time(run.steps.front())},
+                                 {"cut_regroup", cut_time(run.steps.front())},
+                                 {"check", check_time(run.steps.front())}};
     summary["detect_seconds"] = spread_json(detect_time);
     summary["detect_cpu_seconds"] = spread_json(detect_cpu_time);
     summary["world_update_seconds_median"] = median_json(world_update_time);
