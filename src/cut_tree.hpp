@@ -25,6 +25,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "quantile_select.hpp"
+
 namespace smb::detail {
 
 /// Number of cut values <= value, i.e. the segment holding `value`. Boxes arrive in no particular
@@ -113,38 +115,40 @@ public:
         return limit_[level][group] != 0;
     }
 
-    /// The axial cut: `keys` (the lower coordinates of the group's boxes, in any order; they are
-    /// reordered) are split into k segments of equal counts. Equal keys always share a segment,
-    /// since a cut is a coordinate value, so a long run of equal keys may leave segments empty
-    /// and one segment full. The caller then sets the group's band with set_band().
-    void cut(int level, std::size_t group, std::span<Real> keys) {
+    /// The axial cut: the keys in `selector` (the lower coordinates of the group's boxes, in
+    /// any order; they are reordered) are split into k segments of equal counts. Equal keys
+    /// always share a segment, since a cut is a coordinate value, so a long run of equal keys may
+    /// leave segments empty and one segment full. The caller then sets the group's band with
+    /// set_band().
+    void cut(int level, std::size_t group, QuantileSelector<Real>& selector) {
         Real* out = cuts_[level].data() + group * (k_ - 1);
         if (k_ > 1) {
-            if (keys.empty()) {
+            if (selector.keys.empty()) {
                 std::fill(out, out + (k_ - 1), Real{0});
             } else {
-                select_quantiles(keys, 0, keys.size(), 1, k_, out);
+                selector.select(k_, out);
             }
         }
     }
 
     /// The axial cut of a group of n boxes, box j's lower end given by key_at(j, key) (false: the
-    /// box takes no part, being oversized). The keys are gathered into `scratch`: all of them,
+    /// box takes no part, being oversized). The keys are gathered into `selector`: all of them,
     /// or, in a group of more than twice kSamplePerSegment keys per segment, those of the boxes
     /// at floor(i n / s) for s = kSamplePerSegment * k, which spares copying every key.
     /// Deterministic. An order of the boxes that aliases with the stride can only make the
     /// planes uneven, which costs time and is corrected by the next cut; it never changes the
     /// pairs.
     template <class KeyAt>
-    void cut_group(int level, std::size_t group, std::size_t n, KeyAt&& key_at, std::vector<Real>& scratch) {
+    void cut_group(int level, std::size_t group, std::size_t n, KeyAt&& key_at, QuantileSelector<Real>& selector) {
         const std::size_t sample = kSamplePerSegment * k_;
         const std::size_t take = n > 2 * sample ? sample : n;
-        scratch.clear();
+        std::vector<Real>& keys = selector.keys;
+        keys.clear();
         Real key{};
         for (std::size_t i = 0; i < take; ++i) {
-            if (key_at(take == n ? i : i * n / take, key)) scratch.push_back(key);
+            if (key_at(take == n ? i : i * n / take, key)) keys.push_back(key);
         }
-        cut(level, group, scratch);
+        cut(level, group, selector);
     }
 
     /// A group with more than twice this many keys per segment takes its quantiles from an
@@ -178,25 +182,6 @@ public:
     }
 
 private:
-    // The key of rank floor(j n / k) for every j in [first_j, last_j), all of whose ranks lie in
-    // [from, to): select the middle quantile, then recurse on either side of it. Each level of
-    // the recursion is one linear pass, so O(n log k) in all, where selecting the quantiles one
-    // after another would cost O(n k).
-    void select_quantiles(std::span<Real> keys, std::size_t from, std::size_t to, std::uint32_t first_j,
-                          std::uint32_t last_j, Real* out) const {
-        if (first_j >= last_j) return;
-        const std::size_t n = keys.size();
-        const std::uint32_t middle_j = first_j + (last_j - first_j) / 2;
-        const std::size_t rank = std::min(n - 1, (static_cast<std::size_t>(middle_j) * n) / k_);
-        std::nth_element(keys.begin() + static_cast<std::ptrdiff_t>(from),
-                         keys.begin() + static_cast<std::ptrdiff_t>(rank),
-                         keys.begin() + static_cast<std::ptrdiff_t>(to));
-        out[middle_j - 1] = keys[rank];
-        // Ranks may repeat when n < k: both sides keep the selected place.
-        select_quantiles(keys, from, rank + 1, first_j, middle_j, out);
-        select_quantiles(keys, rank, to, middle_j + 1, last_j, out);
-    }
-
     std::uint32_t k_ = 0;
     std::array<std::size_t, Dim + 1> groups_{};
     std::array<std::vector<Real>, Dim> cuts_;

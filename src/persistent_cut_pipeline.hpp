@@ -114,7 +114,7 @@ public:
         bytes += counts_.capacity() * sizeof(std::uint32_t);
         bytes += workers_.capacity() * sizeof(WorkerScratch) + blocks_.capacity() * sizeof(BlockOutput);
         for (const WorkerScratch& worker : workers_) {
-            bytes += worker.keys.capacity() * sizeof(Real) + worker.marks.capacity() * sizeof(Position) +
+            bytes += worker.quantiles.bytes_held() + worker.marks.capacity() * sizeof(Position) +
                      worker.count.capacity() * sizeof(std::uint32_t) + worker.sweep.bytes_held();
         }
         for (const BlockOutput& block : blocks_)
@@ -145,7 +145,7 @@ private:
 
     /// What one thread needs for itself while groups or cells are shared out.
     struct WorkerScratch {
-        std::vector<Real> keys;            // a group's lower ends, for its axial cut
+        QuantileSelector<Real> quantiles;  // a group's lower ends and the buffers of its axial cut
         std::vector<Position> marks;       // boxes this thread found oversized on this level
         std::vector<std::uint32_t> count;  // level 0: this thread's share of the index array
         CellSweep<Real, Dim> sweep;
@@ -520,7 +520,7 @@ double PersistentCutPipeline<Real, Dim, Input>::regroup_first_level(std::size_t 
         cuts_.cut_group(0, 0, n, [&](std::size_t i, Real& key) {
             key = boxes[i].min[axis_of_level(0)];
             return true;
-        }, workers_[0].keys);
+        }, workers_[0].quantiles);
         const std::uint32_t balanced = locate_shares();
         std::size_t registrations = 0;
         for (const WorkerScratch& worker : workers_)
@@ -601,7 +601,7 @@ double PersistentCutPipeline<Real, Dim, Input>::regroup_level(int level, std::sp
                     return false;
                 key = boxes[position].min[axis];
                 return true;
-            }, worker.keys);
+            }, worker.quantiles);
             const std::uint32_t balanced = locate_group(level, g, entries, boxes, ranges, segment_count, worker);
             std::size_t registrations = 0;
             for (std::uint32_t s = 0; s < k; ++s) registrations += segment_count[s];

@@ -22,11 +22,13 @@ std::vector<std::size_t> segment_counts(const CutTree<double, 2>& tree, const st
 TEST(CutTree, SmallGroupsAreCutAtTheExactQuantiles) {
     CutTree<double, 2> tree;
     tree.reshape(4);
-    std::vector<double> keys(400);
-    for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = static_cast<double>((i * 7919) % 400);
-    const std::vector<double> original = keys;
-    tree.cut(0, 0, keys);
-    EXPECT_EQ(segment_counts(tree, original), (std::vector<std::size_t>{100, 100, 100, 100}));
+    for (const std::size_t n : {std::size_t{400}, std::size_t{4000}}) {  // recursive selection, radix sort
+        QuantileSelector<double> selector;
+        for (std::size_t i = 0; i < n; ++i) selector.keys.push_back(static_cast<double>((i * 7919) % n));
+        const std::vector<double> original = selector.keys;
+        tree.cut(0, 0, selector);
+        EXPECT_EQ(segment_counts(tree, original), std::vector<std::size_t>(4, n / 4));
+    }
 }
 
 TEST(CutTree, LargeGroupsAreCutFromASampleWithinAFewPercentOfEven) {
@@ -36,9 +38,9 @@ TEST(CutTree, LargeGroupsAreCutFromASampleWithinAFewPercentOfEven) {
     std::normal_distribution<double> coordinate(0.0, 10.0);
     std::vector<double> keys(1000000);
     for (double& key : keys) key = coordinate(random);
-    std::vector<double> scratch;
+    QuantileSelector<double> scratch;
     tree.cut_group(0, 0, keys.size(), [&](std::size_t i, double& key) { key = keys[i]; return true; }, scratch);
-    EXPECT_EQ(scratch.size(), (CutTree<double, 2>::kSamplePerSegment * 40));
+    EXPECT_EQ(scratch.keys.size(), (CutTree<double, 2>::kSamplePerSegment * 40));
     const auto counts = segment_counts(tree, keys);
     const double even = static_cast<double>(keys.size()) / 40.0;
     for (const std::size_t count : counts) {
@@ -53,7 +55,7 @@ TEST(CutTree, EqualKeysShareASegment) {
     tree.reshape(8);
     std::vector<double> keys(100000, 3.0);
     for (std::size_t i = 0; i < 1000; ++i) keys[i * 100] = static_cast<double>(i);
-    std::vector<double> scratch;
+    QuantileSelector<double> scratch;
     // Every third box takes no part (as an oversized box would); the others are sampled.
     tree.cut_group(0, 0, keys.size(), [&](std::size_t i, double& key) {
         key = keys[i];
