@@ -55,15 +55,24 @@ template <std::floating_point Real>
 /// segment_of() when the answer is probably `hint` or the segment after it: the entries of a
 /// group arrive in last step's segment order and boxes move little, so the previous entry's
 /// segment (or, for a max, the box's own min segment) is nearly always right.
+/// `misses` counts the values that needed the full search.
 template <std::floating_point Real>
-[[nodiscard]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value,
-                                                std::uint32_t hint) noexcept {
+[[nodiscard]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value, std::uint32_t hint,
+                                                std::size_t& misses) noexcept {
     const std::size_t n = cuts.size();
     if (hint <= n && (hint == 0 || cuts[hint - 1] <= value)) {
         if (hint == n || value < cuts[hint]) return hint;
         if (hint + 1 == n || value < cuts[hint + 1]) return hint + 1;
     }
+    ++misses;
     return segment_of(cuts, value);
+}
+
+template <std::floating_point Real>
+[[nodiscard]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value,
+                                                std::uint32_t hint) noexcept {
+    std::size_t unused = 0;
+    return segment_near(cuts, value, hint, unused);
 }
 
 template <std::floating_point Real, int Dim>
