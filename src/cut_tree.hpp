@@ -34,7 +34,7 @@ namespace smb::detail {
 /// Up to 64 planes a plain count is fastest (no dependent loads; the compiler vectorises it);
 /// beyond, a branch-free binary search.
 template <std::floating_point Real>
-[[nodiscard]] inline std::uint32_t segment_of(std::span<const Real> cuts, Real value) noexcept {
+[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_of(std::span<const Real> cuts, Real value) noexcept {
     std::size_t n = cuts.size();
     const Real* base = cuts.data();
     if (n <= 64) {
@@ -57,7 +57,7 @@ template <std::floating_point Real>
 /// segment (or, for a max, the box's own min segment) is nearly always right.
 /// `misses` counts the values that needed the full search.
 template <std::floating_point Real>
-[[nodiscard]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value, std::uint32_t hint,
+[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value, std::uint32_t hint,
                                                 std::size_t& misses) noexcept {
     const std::size_t n = cuts.size();
     if (hint <= n && (hint == 0 || cuts[hint - 1] <= value)) {
@@ -69,7 +69,7 @@ template <std::floating_point Real>
 }
 
 template <std::floating_point Real>
-[[nodiscard]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value,
+[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value,
                                                 std::uint32_t hint) noexcept {
     std::size_t unused = 0;
     return segment_near(cuts, value, hint, unused);
