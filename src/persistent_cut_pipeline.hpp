@@ -286,6 +286,8 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     // step) scatters each cell's boxes over the ordered array: the boxes are then renumbered in
     // cell order before the check, so that it reads them sequentially.
     const bool cold = cold_ || cuts_.segments() != segments_before;
+    // In a cold order the previous entry says nothing of the next one's segment.
+    if (cold) locate_without_hint_.fill(true);
 
     const auto start = Clock::now();
     const double cutting = run_levels(store_boxes, store_ids);
