@@ -94,6 +94,8 @@ TEST(CliRun, JsonSummaryOfASmallRun) {
               summary["build_seconds"].get<double>());
     EXPECT_LE(summary["detect_seconds"]["min"].get<double>(),
               summary["detect_seconds"]["median"].get<double>());
+    EXPECT_LE(summary["detect_seconds"]["min"].get<double>(), summary["detect_seconds"]["mean"].get<double>());
+    EXPECT_LE(summary["detect_seconds"]["mean"].get<double>(), summary["detect_seconds"]["max"].get<double>());
     EXPECT_GE(summary["detect_cpu_seconds"]["median"].get<double>(), 0);
     EXPECT_GT(summary["pairs"]["last"].get<std::size_t>(), 0u);
     EXPECT_GT(summary["bytes_per_box"].get<double>(), 0);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <numeric>
 #include <span>
 #include <string>
 #include <string_view>
@@ -30,7 +31,8 @@ Spread spread_after_build(const RunRecord& run, const StepQuantity& quantity) {
     std::vector<double> values;
     for (const auto& step : std::span(run.steps).subspan(1)) values.push_back(quantity(step));
     const auto [low, high] = std::minmax_element(values.begin(), values.end());
-    return {median_of(values), *low, *high};
+    const double mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+    return {median_of(values), mean, *low, *high};
 }
 
 double median_after_build(const RunRecord& run, const StepQuantity& quantity) {
@@ -89,8 +91,8 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
     if (run.steps.size() >= 2) {
         const Spread detect = spread_after_build(run, detect_time);
         line(fmt::format("detect ({} steps)", run.steps.size() - 1),
-             fmt::format("median {}, min {}, max {} (CPU median {})",
-                         duration_text(detect.median), duration_text(detect.min),
+             fmt::format("median {}, mean {}, min {}, max {} (CPU median {})",
+                         duration_text(detect.median), duration_text(detect.mean), duration_text(detect.min),
                          duration_text(detect.max),
                          duration_text(median_after_build(run, detect_cpu_time))));
         line("phases (median)", fmt::format("sort {}, cut+regroup {}, check {}",
@@ -143,7 +145,7 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     auto spread_json = [&](const StepQuantity& quantity) -> json {
         if (!has_later_steps) return nullptr;
         const Spread spread = spread_after_build(run, quantity);
-        return {{"median", spread.median}, {"min", spread.min}, {"max", spread.max}};
+        return {{"median", spread.median}, {"mean", spread.mean}, {"min", spread.min}, {"max", spread.max}};
     };
     auto median_json = [&](const StepQuantity& quantity) -> json {
         if (!has_later_steps) return nullptr;

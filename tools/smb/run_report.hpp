@@ -61,9 +61,11 @@ struct RunRecord {
     CheckRecord check;
 };
 
-/// Median, minimum and maximum of one quantity over the steps after the first.
+/// Median, mean, minimum and maximum of one quantity over the steps after the first. The mean
+/// carries the rare costly steps (a skin's rebuild, a group cut again) that the median hides.
 struct Spread {
     double median = 0;
+    double mean = 0;
     double min = 0;
     double max = 0;
 };
