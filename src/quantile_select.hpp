@@ -15,8 +15,6 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
-#include <span>
 #include <type_traits>
 #include <vector>
 
