@@ -51,18 +51,29 @@ public:
 
     /// Below this many keys the recursive selection is faster. Measured on fresh keys at every
     /// call (repeating one input lets the branch predictor learn it and flatters the selection
-    /// by 6×), uniform floats, k = n / 24: 64 keys 0.75 µs against 0.82 µs for the radix sort;
-    /// 128 keys 3.1 against 1.1; 1000 keys 40 against 4.7 (double: 40 against 8.9).
+    /// by 6×), uniform floats, k = max(2, n / 24) (bench/bench_quantiles.cpp, medians of three):
+    /// 64 keys 0.08 µs against 0.71 µs for the radix sort; 128 keys 2.9 against 0.94; 1000 keys
+    /// 42 against 4.4 (double: 41 against 9.4).
     static constexpr std::size_t kRadixFrom = 128;
 
     /// out[j-1] = the key of rank min(n-1, floor(j n / segments)) for j in [1, segments).
     void select(std::uint32_t segments, Real* out) {
+        if (keys.size() < kRadixFrom) {
+            select_by_selection(segments, out);
+        } else {
+            select_by_radix_sort(segments, out);
+        }
+    }
+
+    /// The two ways, each for any number of keys (select() picks one; tests and
+    /// bench/bench_quantiles.cpp drive both).
+    void select_by_selection(std::uint32_t segments, Real* out) {
+        if (segments < 2 || keys.empty()) return;
+        select_recursively(0, keys.size(), 1, segments, segments, out);
+    }
+    void select_by_radix_sort(std::uint32_t segments, Real* out) {
         const std::size_t n = keys.size();
         if (segments < 2 || n == 0) return;
-        if (n < kRadixFrom) {
-            select_recursively(0, n, 1, segments, segments, out);
-            return;
-        }
         const Key* sorted = radix_sort();
         for (std::uint32_t j = 1; j < segments; ++j) out[j - 1] = from_radix_key<Real>(sorted[rank_of(j, n, segments)]);
     }

@@ -62,17 +62,22 @@ TYPED_TEST(QuantileSelect, EveryQuantileIsTheKeyOfItsRank) {
         for (int shape = 0; shape < 4; ++shape) {
             for (const std::uint32_t segments : {2U, 7U, 35U, 204U, static_cast<std::uint32_t>(n + 3)}) {
                 const std::vector<Real> keys = make_keys<Real>(n, shape, random);
-                selector.keys = keys;
-                std::vector<Real> out(segments - 1, std::numeric_limits<Real>::quiet_NaN());
-                selector.select(segments, out.data());
                 const std::vector<Real> expected = sorted_quantiles(keys, segments);
-                for (std::size_t j = 0; j < expected.size(); ++j) {
-                    // == : a signed zero may come back as either zero, which are the same plane.
-                    ASSERT_TRUE(out[j] == expected[j]) << "n " << n << ", shape " << shape << ", segments " << segments
-                                                       << ", quantile " << j + 1 << ": " << out[j] << " against "
-                                                       << expected[j];
+                // The way select() picks, then each way whatever the size.
+                for (int way = 0; way < 3; ++way) {
+                    selector.keys = keys;
+                    std::vector<Real> out(segments - 1, std::numeric_limits<Real>::quiet_NaN());
+                    if (way == 0) selector.select(segments, out.data());
+                    if (way == 1) selector.select_by_selection(segments, out.data());
+                    if (way == 2) selector.select_by_radix_sort(segments, out.data());
+                    for (std::size_t j = 0; j < expected.size(); ++j) {
+                        // == : a signed zero may come back as either zero, which are the same plane.
+                        ASSERT_TRUE(out[j] == expected[j]) << "way " << way << ", n " << n << ", shape " << shape
+                                                           << ", segments " << segments << ", quantile " << j + 1
+                                                           << ": " << out[j] << " against " << expected[j];
+                    }
+                    ASSERT_TRUE(std::is_sorted(out.begin(), out.end()));
                 }
-                ASSERT_TRUE(std::is_sorted(out.begin(), out.end()));
             }
         }
     }
