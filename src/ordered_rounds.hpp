@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -30,14 +31,17 @@ namespace smb::detail {
 #endif
 }
 
-/// Runs work(item) for items 0..count-1 on `threads` threads, in rounds of `round` items, and
-/// hand_on(item) for every item in item order on the calling thread, one round behind: while
-/// the threads work on round r, the calling thread hands round r - 1 on. Item i may keep its
-/// results in buffer i % (2 * round): a buffer is written again only after it was handed on.
-/// hand_on may throw (a caller's sink): the exception is caught, the work and hand-ons left are
-/// skipped, and it is thrown again once the threads have joined.
-template <class Work, class HandOn>
-void run_in_ordered_rounds(int threads, std::size_t count, std::size_t round, Work&& work, HandOn&& hand_on) {
+/// Runs work(item, buffer) for items 0..count-1 on `threads` threads, in rounds of `round` items,
+/// and hand_on(item, buffer) for every item in item order on the calling thread, one round behind:
+/// while the threads work on round r, the calling thread hands round r - 1 on. Item i gets buffer
+/// i % (2 * round) of `buffers` (grown to that many if smaller), which is written again only after
+/// it was handed on. hand_on may throw (a caller's sink): the exception is caught, the work and
+/// hand-ons left are skipped, and it is thrown again once the threads have joined.
+template <class Buffer, class Work, class HandOn>
+void run_in_ordered_rounds(int threads, std::size_t count, std::size_t round, std::vector<Buffer>& buffers, Work&& work,
+                           HandOn&& hand_on) {
+    if (buffers.size() < 2 * round) buffers.resize(2 * round);
+    auto buffer_of = [&](std::size_t item) -> Buffer& { return buffers[item % (2 * round)]; };
     const std::size_t rounds = (count + round - 1) / round;
     std::exception_ptr failure;
     std::atomic<bool> failed{false};
@@ -49,7 +53,7 @@ void run_in_ordered_rounds(int threads, std::size_t count, std::size_t round, Wo
                 if (r > 0 && !failed.load(std::memory_order_relaxed)) {
                     try {
                         for (std::size_t item = (r - 1) * round; item < count && item < r * round; ++item)
-                            hand_on(item);
+                            hand_on(item, buffer_of(item));
                     } catch (...) {
                         failure = std::current_exception();
                         failed.store(true, std::memory_order_relaxed);
@@ -64,7 +68,8 @@ void run_in_ordered_rounds(int threads, std::size_t count, std::size_t round, Wo
 #pragma omp for schedule(dynamic, 1)
                 for (std::ptrdiff_t b = 0; b < in_round; ++b) {
                     if (failed.load(std::memory_order_relaxed)) continue;
-                    work(first + static_cast<std::size_t>(b));
+                    const std::size_t item = first + static_cast<std::size_t>(b);
+                    work(item, buffer_of(item));
                 }
             }
         }

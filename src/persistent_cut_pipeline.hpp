@@ -750,12 +750,9 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size
         return moves;
     }
     const std::size_t round = 8 * static_cast<std::size_t>(threads_);
-    if (blocks_.size() < 2 * round) blocks_.resize(2 * round);
-    auto block_of = [&](std::size_t item) -> BlockOutput& { return blocks_[item % (2 * round)]; };
     run_in_ordered_rounds(
-        threads_, count, round,
-        [&](std::size_t item) {
-            BlockOutput& block = block_of(item);
+        threads_, count, round, blocks_,
+        [&](std::size_t item, BlockOutput& block) {
             block.pairs.clear();
             block.home.clear();
             block.overflowed = false;
@@ -772,8 +769,7 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size
             };
             block.moves = work(item, collect, block.home, &block.overflowed);
         },
-        [&](std::size_t item) {
-            BlockOutput& block = block_of(item);
+        [&](std::size_t item, BlockOutput& block) {
             if (block.overflowed) {
                 moves += work(item, report_ids, home, nullptr);
             } else {

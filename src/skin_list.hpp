@@ -461,12 +461,9 @@ private:
         if (workers_.size() < threads) workers_.resize(threads);
         const std::size_t blocks = (count + kBlockCandidates - 1) / kBlockCandidates;
         const std::size_t round = 4 * threads;
-        if (blocks_.size() < 2 * round) blocks_.resize(2 * round);
-        auto block_of = [&](std::size_t item) -> Block& { return blocks_[item % (2 * round)]; };
         run_in_ordered_rounds(
-            threads_, blocks, round,
-            [&](std::size_t item) {
-                Block& block = block_of(item);
+            threads_, blocks, round, blocks_,
+            [&](std::size_t item, Block& block) {
                 block.pairs.clear();
                 block.retested = 0;
                 block.tombstones = 0;
@@ -474,8 +471,7 @@ private:
                 test_range(first, std::min(first + kBlockCandidates, count), dropping,
                            workers_[static_cast<std::size_t>(this_thread())], block, [] {});
             },
-            [&](std::size_t item) {
-                Block& block = block_of(item);
+            [&](std::size_t, Block& block) {
                 retested_ += block.retested;
                 tombstones_ += block.tombstones;
                 report.append(block.pairs);
