@@ -1,9 +1,16 @@
 #pragma once
-// The cell check of the persistent-cut pipeline: the boxes registered in one cell get local
-// numbers (the global-local map of the paper), are sorted on x by DIS with one increment (the
-// list arrives almost sorted: it follows last step's order), copied out in that order one array
-// per coordinate, so that the check reads small contiguous arrays, and swept on x with direct
-// tests on the other axes.
+// The cell check of the persistent-cut pipeline, in one of two ways by the number m of boxes
+// registered in the cell. Either way the boxes are copied out one array per coordinate (as
+// floats), so that the check reads small contiguous arrays, eight candidates at a time.
+//
+// - Up to kAllPairsLimit boxes (nearly every cell: the cuts aim at about 24 boxes a cell, about
+//   46 registered in 3D): every pair is tested, in the order the boxes were registered. No keys,
+//   no sort, and loops whose lengths do not depend on the boxes' sizes, which a sweep's scan
+//   does, at one mispredicted exit per box.
+// - Beyond (a crowd the cuts cannot split, or a large target population): the boxes get local
+//   numbers (the global-local map of the paper), are sorted on x by DIS with one increment (the
+//   list arrives almost sorted: it follows last step's order), and are swept on x with direct
+//   tests on the other axes.
 //
 // A pair shared by several cells is reported only by the cell that holds the lower corner of the
 // two boxes' intersection, p[k] = max(a.min[k], b.min[k]). This replaces the paper's mask array:
@@ -117,13 +124,41 @@ class CellSweep {
 public:
     static constexpr std::uint32_t kAllInside = (1U << Dim) - 1;
 
+    /// Cells of up to this many registered boxes are checked by testing every pair. Measured
+    /// against the sweep at 1M boxes (docs/performance.md): the all-pairs test is faster at the
+    /// cells' usual ~46 boxes (the check 94 -> 74 ms in 3D, 45 -> 38 ms in 2D) and still at ~130
+    /// (a target population of 64); its cost grows as m^2 / 16 lane groups, so crowds are swept.
+    static constexpr std::size_t kAllPairsLimit = 128;
+
     /// Reports every pair of `entries` (positions of the boxes registered in the cell) whose
     /// lower intersection corner lies in the cell, and appends to `home` the positions whose own
-    /// lower corner does, in x order: the order the next detection starts from. Returns the
-    /// insertion-sort moves.
+    /// lower corner does: the order the next detection starts from. Returns the insertion-sort
+    /// moves (none when every pair is tested).
     template <class Report, class Id>
     std::size_t check(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
-                      std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report, std::vector<std::uint32_t>& home) {
+                      std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report,
+                      std::vector<std::uint32_t>& home) {
+        if (entries.size() <= kAllPairsLimit) {
+            check_all_pairs(entries, boxes, floor, report, home);
+            return 0;
+        }
+        return check_by_sweep(entries, boxes, ids, floor, report, home);
+    }
+
+    /// check() by testing every pair; `home` gets the positions in the order of `entries`.
+    template <class Report>
+    void check_all_pairs(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
+                         const CellFloor<Real, Dim>& floor, Report& report, std::vector<std::uint32_t>& home) {
+        lay_out(entries, boxes, floor);
+        test_all_pairs(entries.size(), boxes, report, home);
+    }
+
+    /// check() by a sort and a sweep on x; `home` gets the positions in x order (ties by
+    /// coordinate and id). Returns the insertion-sort moves.
+    template <class Report, class Id>
+    std::size_t check_by_sweep(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
+                               std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report,
+                               std::vector<std::uint32_t>& home) {
         const std::size_t m = entries.size();
         order_.resize(m);
         std::uint64_t* order = order_.data();
@@ -138,10 +173,10 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes = order_.capacity() * sizeof(std::uint64_t);
-        for (const auto& column : sorted_.min) bytes += column.capacity() * sizeof(float);
-        for (const auto& column : sorted_.max) bytes += column.capacity() * sizeof(float);
-        bytes += sorted_.inside.capacity() * sizeof(Mask) + sorted_.key.capacity() * sizeof(std::uint32_t) +
-                 sorted_.position.capacity() * sizeof(std::uint32_t);
+        for (const auto& column : columns_.min) bytes += column.capacity() * sizeof(float);
+        for (const auto& column : columns_.max) bytes += column.capacity() * sizeof(float);
+        bytes += columns_.inside.capacity() * sizeof(Mask) + columns_.key.capacity() * sizeof(std::uint32_t) +
+                 columns_.position.capacity() * sizeof(std::uint32_t);
         return bytes;
     }
 
@@ -152,13 +187,14 @@ private:
     // again exactly. Four double lanes fill two SSE registers and measured slower than one
     // candidate at a time (and the layout takes twice the bytes); four float lanes fill one.
     static constexpr std::size_t kPadding = 8;  // the most lanes
+
     static constexpr bool kExactLanes = std::is_same_v<Real, float>;
     using Mask = std::int32_t;
 
-    /// The cell's boxes in x order, one array per coordinate (as floats), padded with kPadding
-    /// boxes that reach nothing (min NaN, key above every real key) so that the last group of
-    /// lanes may read past the end.
-    struct SortedColumns {
+    /// The cell's boxes, one array per coordinate (as floats), in x order for the sweep or as
+    /// registered for the all-pairs test, padded with kPadding boxes that reach nothing (min NaN,
+    /// key above every real key) so that the last group of lanes may read past the end.
+    struct CellColumns {
         std::array<std::vector<float>, Dim> min;
         std::array<std::vector<float>, Dim> max;
         std::vector<Mask> inside;
@@ -168,36 +204,51 @@ private:
 
     void lay_out_sorted(const std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
                         std::span<const Box<Real, Dim>> boxes, const CellFloor<Real, Dim>& floor) {
+        lay_out_columns(m, [&](std::size_t r) { return entries[order[r] & 0xFFFFFFFFU]; },
+                        [&](std::size_t r) { return static_cast<std::uint32_t>(order[r] >> 32); }, boxes, floor);
+    }
+
+    /// As registered, for the all-pairs test, which reads no keys.
+    void lay_out(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
+                 const CellFloor<Real, Dim>& floor) {
+        lay_out_columns(entries.size(), [&](std::size_t r) { return entries[r]; },
+                        [](std::size_t) { return std::uint32_t{0}; }, boxes, floor);
+    }
+
+    template <class PositionAt, class KeyAt>
+    [[gnu::always_inline]] inline void lay_out_columns(std::size_t m, PositionAt position_at, KeyAt key_at,
+                                                       std::span<const Box<Real, Dim>> boxes,
+                                                       const CellFloor<Real, Dim>& floor) {
         const std::size_t padded = m + kPadding;
         for (int k = 0; k < Dim; ++k) {
-            sorted_.min[k].resize(padded);
-            sorted_.max[k].resize(padded);
+            columns_.min[k].resize(padded);
+            columns_.max[k].resize(padded);
         }
-        sorted_.inside.resize(padded);
-        sorted_.key.resize(padded);
-        sorted_.position.resize(padded);
+        columns_.inside.resize(padded);
+        columns_.key.resize(padded);
+        columns_.position.resize(padded);
         for (std::size_t r = 0; r < m; ++r) {
-            const std::uint32_t position = entries[order[r] & 0xFFFFFFFFU];
+            const std::uint32_t position = position_at(r);
             const Box<Real, Dim>& box = boxes[position];
             std::uint32_t inside = 0;
             for (int k = 0; k < Dim; ++k) {
-                sorted_.min[k][r] = to_float(box.min[k]);
-                sorted_.max[k][r] = to_float(box.max[k]);
+                columns_.min[k][r] = to_float(box.min[k]);
+                columns_.max[k][r] = to_float(box.max[k]);
                 inside |= (box.min[k] >= floor[k] ? 1U : 0U) << k;
             }
-            sorted_.inside[r] = static_cast<Mask>(inside);
-            sorted_.key[r] = static_cast<std::uint32_t>(order[r] >> 32);
-            sorted_.position[r] = position;
+            columns_.inside[r] = static_cast<Mask>(inside);
+            columns_.key[r] = key_at(r);
+            columns_.position[r] = position;
         }
         for (std::size_t r = m; r < padded; ++r) {
             for (int k = 0; k < Dim; ++k) {
                 // NaN: no comparison with it holds, whatever the box it is tested against.
-                sorted_.min[k][r] = std::numeric_limits<float>::quiet_NaN();
-                sorted_.max[k][r] = -std::numeric_limits<float>::infinity();
+                columns_.min[k][r] = std::numeric_limits<float>::quiet_NaN();
+                columns_.max[k][r] = -std::numeric_limits<float>::infinity();
             }
-            sorted_.inside[r] = 0;
-            sorted_.key[r] = ~std::uint32_t{0};  // above the key of any finite max
-            sorted_.position[r] = 0;
+            columns_.inside[r] = 0;
+            columns_.key[r] = ~std::uint32_t{0};  // above the key of any finite max
+            columns_.position[r] = 0;
         }
     }
 
@@ -239,16 +290,16 @@ private:
                                                    Report& report, std::vector<std::uint32_t>& home) const {
         using FloatLanes = typename SweepLanes<Lanes>::Floats;
         using MaskLanes = typename SweepLanes<Lanes>::Masks;
-        const std::uint32_t* key = sorted_.key.data();
-        const Mask* inside = sorted_.inside.data();
-        const std::uint32_t* position = sorted_.position.data();
+        const std::uint32_t* key = columns_.key.data();
+        const Mask* inside = columns_.inside.data();
+        const std::uint32_t* position = columns_.position.data();
         for (std::size_t i = 0; i < m; ++i) {
             if (inside[i] == static_cast<Mask>(kAllInside)) home.push_back(position[i]);
-            const std::uint32_t stop = monotone_key(sorted_.max[0][i]);
+            const std::uint32_t stop = monotone_key(columns_.max[0][i]);
             std::array<float, Dim> low{}, high{};  // low[0] unused: see above
             for (int k = 0; k < Dim; ++k) {
-                low[k] = sorted_.min[k][i];
-                high[k] = sorted_.max[k][i];
+                low[k] = columns_.min[k][i];
+                high[k] = columns_.max[k][i];
             }
             const Mask own = inside[i];
             for (std::size_t j = i + 1; key[j] <= stop; j += Lanes) {
@@ -256,11 +307,71 @@ private:
                 load(others, inside + j);
                 MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
                 FloatLanes lower, upper;
-                load(lower, sorted_.min[0].data() + j);
+                load(lower, columns_.min[0].data() + j);
                 hit &= lower <= high[0];
                 for (int k = 1; k < Dim; ++k) {
-                    load(lower, sorted_.min[k].data() + j);
-                    load(upper, sorted_.max[k].data() + j);
+                    load(lower, columns_.min[k].data() + j);
+                    load(upper, columns_.max[k].data() + j);
+                    hit &= lower <= high[k];
+                    hit &= upper >= low[k];
+                }
+                unsigned bits = lane_bits<Lanes>(hit);
+                while (bits != 0) {
+                    const std::uint32_t other = position[j + static_cast<std::size_t>(std::countr_zero(bits))];
+                    bits &= bits - 1;
+                    if (kExactLanes || overlaps(boxes[position[i]], boxes[other])) report(position[i], other);
+                }
+            }
+        }
+    }
+
+    // Every box i against every box after it, a group of lanes at a time, on all axes both ways
+    // (no order to lean on); the lanes past m hold the padding, which no test passes. Pairs
+    // whose lower intersection corner lies in another cell drop out through `inside`, as in
+    // the sweep.
+    template <class Report>
+    void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
+                        std::vector<std::uint32_t>& home) const {
+#if SMB_SWEEP_AVX2
+        if (cpu_has_avx2()) {
+            test_all_pairs_avx2(m, boxes, report, home);
+            return;
+        }
+#endif
+        all_pairs_lanes<4>(m, boxes, report, home);
+    }
+
+#if SMB_SWEEP_AVX2
+    template <class Report>
+    [[gnu::target("avx2")]] void test_all_pairs_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes,
+                                                     Report& report, std::vector<std::uint32_t>& home) const {
+        all_pairs_lanes<8>(m, boxes, report, home);
+    }
+#endif
+
+    template <std::size_t Lanes, class Report>
+    [[gnu::always_inline]] inline void all_pairs_lanes(std::size_t m, std::span<const Box<Real, Dim>> boxes,
+                                                       Report& report, std::vector<std::uint32_t>& home) const {
+        using FloatLanes = typename SweepLanes<Lanes>::Floats;
+        using MaskLanes = typename SweepLanes<Lanes>::Masks;
+        const Mask* inside = columns_.inside.data();
+        const std::uint32_t* position = columns_.position.data();
+        for (std::size_t i = 0; i < m; ++i) {
+            if (inside[i] == static_cast<Mask>(kAllInside)) home.push_back(position[i]);
+            std::array<float, Dim> low{}, high{};
+            for (int k = 0; k < Dim; ++k) {
+                low[k] = columns_.min[k][i];
+                high[k] = columns_.max[k][i];
+            }
+            const Mask own = inside[i];
+            for (std::size_t j = i + 1; j < m; j += Lanes) {
+                MaskLanes others;
+                load(others, inside + j);
+                MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
+                for (int k = 0; k < Dim; ++k) {
+                    FloatLanes lower, upper;
+                    load(lower, columns_.min[k].data() + j);
+                    load(upper, columns_.max[k].data() + j);
                     hit &= lower <= high[k];
                     hit &= upper >= low[k];
                 }
@@ -315,7 +426,7 @@ private:
     }
 
     std::vector<std::uint64_t> order_;
-    SortedColumns sorted_;
+    CellColumns columns_;
 };
 
 }  // namespace smb::detail

@@ -52,27 +52,40 @@ template <std::floating_point Real>
     return static_cast<std::uint32_t>(base - cuts.data()) + (*base <= value ? 1U : 0U);
 }
 
-/// segment_of() when the answer is probably `hint` or the segment after it: the entries of a
+/// segment_of() when the answer is probably `hint` or a segment beside it: the entries of a
 /// group arrive in last step's segment order and boxes move little, so the previous entry's
-/// segment (or, for a max, the box's own min segment) is nearly always right.
+/// segment is nearly always right, and a box that crossed a plane since lies next to it.
 /// `misses` counts the values that needed the full search.
 template <std::floating_point Real>
 [[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value, std::uint32_t hint,
                                                 std::size_t& misses) noexcept {
     const std::size_t n = cuts.size();
-    if (hint <= n && (hint == 0 || cuts[hint - 1] <= value)) {
-        if (hint == n || value < cuts[hint]) return hint;
-        if (hint + 1 == n || value < cuts[hint + 1]) return hint + 1;
+    if (hint <= n) {
+        if (hint == 0 || cuts[hint - 1] <= value) {
+            if (hint == n || value < cuts[hint]) return hint;
+            if (hint + 1 == n || value < cuts[hint + 1]) return hint + 1;
+        } else if (hint == 1 || cuts[hint - 2] <= value) {
+            return hint - 1;
+        }
     }
     ++misses;
     return segment_of(cuts, value);
 }
 
+/// The segment of a box's max, given `lo`, its min's segment: lo, lo + 1, or lo + 2 standing
+/// for any later one (a box that spans more than two segments leaves the levels, whichever its
+/// last). Without a branch: whether a box crosses the plane after its min is a coin toss from
+/// one box to the next (about one in four at 1M in 3D), which a branch would mispredict.
 template <std::floating_point Real>
-[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value,
-                                                std::uint32_t hint) noexcept {
-    std::size_t unused = 0;
-    return segment_near(cuts, value, hint, unused);
+[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_of_max(std::span<const Real> cuts, Real max,
+                                                                        std::uint32_t lo) noexcept {
+    const std::size_t n = cuts.size();
+    if (n == 0) return 0;
+    const Real* last = cuts.data() + (n - 1);
+    const Real* next = cuts.data() + lo;
+    const bool past_next = lo < n && *std::min(next, last) <= max;
+    const bool past_after = lo + 1 < n && *std::min(next + 1, last) <= max;
+    return lo + (past_next ? 1U : 0U) + (past_next && past_after ? 1U : 0U);
 }
 
 template <std::floating_point Real, int Dim>

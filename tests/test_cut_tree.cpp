@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "cut_tree.hpp"
@@ -79,9 +80,51 @@ TEST(CutTree, SegmentNearAgreesWithSegmentOf) {
     for (int trial = 0; trial < 10000; ++trial) {
         const double v = trial % 50 == 0 ? planes[trial % planes.size()] : value(random);
         const auto hint = static_cast<std::uint32_t>(random() % 102);
-        ASSERT_EQ(segment_near(std::span<const double>(planes), v, hint), segment_of(std::span<const double>(planes), v));
+        const std::uint32_t found = segment_of(std::span<const double>(planes), v);
+        std::size_t misses = 0;
+        ASSERT_EQ(segment_near(std::span<const double>(planes), v, hint, misses), found);
+        // A search only where the hint was more than one segment off (or no segment at all).
+        const bool off = hint > planes.size() || found + 1 < hint || found > hint + 1;
+        ASSERT_EQ(misses, off ? 1U : 0U) << "hint " << hint << ", segment " << found;
         ASSERT_EQ(segment_of(std::span<const double>(planes).first(40), v),
                   static_cast<std::uint32_t>(std::count_if(planes.begin(), planes.begin() + 40, [&](double p) { return p <= v; })));
+    }
+}
+
+TEST(CutTree, SegmentNearTakesTheHintOrASegmentBesideItWithoutASearch) {
+    const std::vector<double> planes{1.0, 2.0, 3.0, 4.0};
+    const std::span<const double> cuts(planes);
+    std::size_t misses = 0;
+    EXPECT_EQ(segment_near(cuts, 2.5, 2, misses), 2U);
+    EXPECT_EQ(segment_near(cuts, 3.0, 2, misses), 3U) << "a plane belongs to the segment above it";
+    EXPECT_EQ(segment_near(cuts, 1.5, 2, misses), 1U);
+    EXPECT_EQ(segment_near(cuts, -7.0, 1, misses), 0U);
+    EXPECT_EQ(segment_near(cuts, 9.0, 3, misses), 4U);
+    EXPECT_EQ(segment_near(cuts, 9.0, 4, misses), 4U);
+    EXPECT_EQ(misses, 0U);
+    EXPECT_EQ(segment_near(cuts, 0.5, 2, misses), 0U);
+    EXPECT_EQ(segment_near(cuts, 4.5, 2, misses), 4U);
+    EXPECT_EQ(misses, 2U) << "two segments away needs the search";
+}
+
+TEST(CutTree, SegmentOfMaxIsTheMaxSegmentUpToTwoPastTheMin) {
+    std::mt19937_64 random(5);
+    for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{3}, std::size_t{40},
+                                std::size_t{100}}) {
+        std::vector<float> planes;
+        for (std::size_t i = 0; i < n; ++i) planes.push_back(static_cast<float>(i) * 0.75F);
+        const std::span<const float> cuts(planes);
+        std::uniform_real_distribution<float> value(-3.0F, static_cast<float>(n) + 3.0F);
+        for (int trial = 0; trial < 5000; ++trial) {
+            float min = value(random);
+            float max = value(random);
+            if (trial % 7 == 0 && n > 0) min = planes[random() % n];  // on a plane
+            if (trial % 11 == 0) max = min;                            // a point
+            if (max < min) std::swap(min, max);
+            const std::uint32_t lo = segment_of(cuts, min);
+            const std::uint32_t expected = std::min(segment_of(cuts, max), lo + 2);
+            ASSERT_EQ(segment_of_max(cuts, max, lo), expected) << "n " << n << ", min " << min << ", max " << max;
+        }
     }
 }
 

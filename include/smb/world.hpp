@@ -36,7 +36,9 @@ class WorldState;
 ///
 /// Determinism: the same sequence of calls gives the same pairs in the same order, whatever
 /// WorldSettings::threads. The order of pairs within one detection is otherwise unspecified;
-/// sort_pairs() gives (a, b) order.
+/// sort_pairs() gives (a, b) order. A cell lists its pairs in the order the detection before
+/// left its boxes, so detecting again without changes reports the same pairs, and from the
+/// second such detection on in the same order too.
 ///
 /// Thread safety: a World is not synchronised. Distinct worlds may be used from distinct
 /// threads; one world must not be used from two threads at once, not even for detect().

@@ -1,0 +1,201 @@
+// The cell check (src/cell_sweep.hpp) both ways: testing every pair and sweeping on x report the
+// same pairs and the same home boxes as a direct test under the lower-corner rule, at every
+// size around the limit between them, in float and double, with the boxes registered in any
+// order.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <set>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "cell_sweep.hpp"
+
+namespace smb::detail {
+namespace {
+
+template <class Real, int Dim>
+struct Cell {
+    std::vector<Box<Real, Dim>> boxes;
+    std::vector<std::uint32_t> entries;  // positions registered in the cell, in any order
+    std::vector<BoxId> ids;
+    CellFloor<Real, Dim> floor{};
+};
+
+using PairSet = std::set<std::pair<std::uint32_t, std::uint32_t>>;
+
+std::pair<std::uint32_t, std::uint32_t> ordered(std::uint32_t a, std::uint32_t b) {
+    return a < b ? std::pair{a, b} : std::pair{b, a};
+}
+
+/// The pairs the cell must report: overlapping, with the lower corner of their intersection at or
+/// above the floor on every axis.
+template <class Real, int Dim>
+PairSet expected_pairs(const Cell<Real, Dim>& cell) {
+    PairSet pairs;
+    for (std::size_t i = 0; i < cell.entries.size(); ++i) {
+        for (std::size_t j = i + 1; j < cell.entries.size(); ++j) {
+            const auto& a = cell.boxes[cell.entries[i]];
+            const auto& b = cell.boxes[cell.entries[j]];
+            bool here = overlaps(a, b);
+            for (int k = 0; k < Dim; ++k) here = here && std::max(a.min[k], b.min[k]) >= cell.floor[k];
+            if (here) pairs.insert(ordered(cell.entries[i], cell.entries[j]));
+        }
+    }
+    return pairs;
+}
+
+template <class Real, int Dim>
+std::vector<std::uint32_t> expected_home(const Cell<Real, Dim>& cell) {
+    std::vector<std::uint32_t> home;
+    for (const std::uint32_t position : cell.entries) {
+        bool inside = true;
+        for (int k = 0; k < Dim; ++k) inside = inside && cell.boxes[position].min[k] >= cell.floor[k];
+        if (inside) home.push_back(position);
+    }
+    return home;
+}
+
+/// m boxes on a small lattice of coordinates (so that touching, identical and zero-size boxes
+/// are common), some far out or spanning the whole cell, registered in a shuffled order.
+template <class Real, int Dim>
+Cell<Real, Dim> random_cell(std::mt19937_64& random, std::size_t m) {
+    Cell<Real, Dim> cell;
+    std::uniform_int_distribution<int> lattice(0, 24);
+    for (std::size_t i = 0; i < m; ++i) {
+        Box<Real, Dim> box;
+        for (int k = 0; k < Dim; ++k) {
+            Real lo = static_cast<Real>(lattice(random)) * Real{0.25};
+            Real hi = lo + static_cast<Real>(lattice(random) % 6) * Real{0.25};
+            if (random() % 23 == 0) lo = -std::numeric_limits<Real>::max();
+            if (random() % 29 == 0) hi = std::numeric_limits<Real>::max();
+            if (random() % 31 == 0) lo = hi;
+            box.min[k] = lo;
+            box.max[k] = hi;
+        }
+        cell.boxes.push_back(box);
+        cell.ids.push_back(static_cast<BoxId>(1000 + (i * 7919) % (m + 1)));
+        cell.entries.push_back(static_cast<std::uint32_t>(i));
+    }
+    std::shuffle(cell.entries.begin(), cell.entries.end(), random);
+    for (int k = 0; k < Dim; ++k) {
+        cell.floor[k] = random() % 3 == 0 ? -std::numeric_limits<Real>::infinity()
+                                          : static_cast<Real>(lattice(random)) * Real{0.125};
+    }
+    return cell;
+}
+
+template <class Real, int Dim>
+struct Checked {
+    PairSet pairs;
+    std::size_t reports = 0;
+    std::vector<std::uint32_t> home;
+};
+
+template <class Real, int Dim, class Run>
+Checked<Real, Dim> run_check(Run&& run) {
+    Checked<Real, Dim> out;
+    auto report = [&](std::uint32_t a, std::uint32_t b) {
+        ++out.reports;
+        out.pairs.insert(ordered(a, b));
+    };
+    run(report, out.home);
+    return out;
+}
+
+template <class T>
+class CellSweepTest : public ::testing::Test {};
+
+template <class Real, int D>
+struct Kind {
+    using real_type = Real;
+    static constexpr int dimension = D;
+};
+using Kinds = ::testing::Types<Kind<float, 2>, Kind<float, 3>, Kind<double, 2>, Kind<double, 3>>;
+TYPED_TEST_SUITE(CellSweepTest, Kinds);
+
+TYPED_TEST(CellSweepTest, AllPairsAndSweepReportTheSamePairsOnce) {
+    using Real = typename TypeParam::real_type;
+    constexpr int Dim = TypeParam::dimension;
+    constexpr std::size_t limit = CellSweep<Real, Dim>::kAllPairsLimit;
+    std::mt19937_64 random(17 + Dim);
+    CellSweep<Real, Dim> sweep;  // one object throughout: its buffers are reused, as in the pipeline
+    for (const std::size_t m : {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{8},
+                                std::size_t{9}, std::size_t{31}, limit - 1, limit, limit + 1, std::size_t{300}}) {
+        for (int trial = 0; trial < 6; ++trial) {
+            SCOPED_TRACE(::testing::Message() << "m " << m << ", trial " << trial);
+            const Cell<Real, Dim> cell = random_cell<Real, Dim>(random, m);
+            const std::span<const std::uint32_t> entries(cell.entries);
+            const std::span<const Box<Real, Dim>> boxes(cell.boxes);
+            const std::span<const BoxId> ids(cell.ids);
+            const PairSet expected = expected_pairs(cell);
+            std::vector<std::uint32_t> home = expected_home(cell);
+
+            const auto all_pairs = run_check<Real, Dim>(
+                [&](auto& report, auto& out) { sweep.check_all_pairs(entries, boxes, cell.floor, report, out); });
+            EXPECT_EQ(all_pairs.pairs, expected);
+            EXPECT_EQ(all_pairs.reports, expected.size()) << "a pair reported twice";
+            EXPECT_EQ(all_pairs.home, home) << "home boxes in the order they were registered";
+
+            const auto swept = run_check<Real, Dim>(
+                [&](auto& report, auto& out) { sweep.check_by_sweep(entries, boxes, ids, cell.floor, report, out); });
+            EXPECT_EQ(swept.pairs, expected);
+            EXPECT_EQ(swept.reports, expected.size()) << "a pair reported twice";
+            EXPECT_TRUE(std::is_sorted(swept.home.begin(), swept.home.end(), [&](std::uint32_t a, std::uint32_t b) {
+                return cell.boxes[a].min[0] < cell.boxes[b].min[0];
+            })) << "home boxes in x order";
+            std::vector<std::uint32_t> swept_home = swept.home;
+            std::sort(swept_home.begin(), swept_home.end());
+            std::sort(home.begin(), home.end());
+            EXPECT_EQ(swept_home, home);
+
+            const auto checked = run_check<Real, Dim>(
+                [&](auto& report, auto& out) { sweep.check(entries, boxes, ids, cell.floor, report, out); });
+            EXPECT_EQ(checked.pairs, expected);
+            EXPECT_EQ(checked.home, m <= limit ? all_pairs.home : swept.home) << "check() takes the way its size asks";
+        }
+    }
+}
+
+TEST(CellSweep, DoubleGapsBelowFloatPrecisionAreTestedExactly) {
+    // Floats round these boxes onto one another; only the exact test on the doubles tells the
+    // touching pair (reported) from the ones a hair apart (not).
+    const double base = 1.0e6;
+    const double hair = 1.0e-7;  // far below a float's spacing at 1e6 (0.0625)
+    std::vector<Box<double, 3>> boxes;
+    for (int i = 0; i < 40; ++i) {
+        const double x = base + i * 2 * hair;
+        boxes.push_back(Box<double, 3>{{x, 0.0, 0.0}, {x + hair * 0.5, 1.0, 1.0}});
+    }
+    boxes.push_back(Box<double, 3>{{base + hair * 0.5, 0.0, 0.0}, {base + hair, 1.0, 1.0}});  // touches box 0 only
+    std::vector<std::uint32_t> entries(boxes.size());
+    for (std::uint32_t i = 0; i < entries.size(); ++i) entries[i] = i;
+    std::vector<BoxId> ids(entries.begin(), entries.end());
+    const CellFloor<double, 3> floor{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                                     -std::numeric_limits<double>::infinity()};
+    CellSweep<double, 3> sweep;
+    for (const bool swept : {false, true}) {
+        SCOPED_TRACE(swept ? "sweep" : "all pairs");
+        PairSet pairs;
+        std::vector<std::uint32_t> home;
+        auto report = [&](std::uint32_t a, std::uint32_t b) { pairs.insert(ordered(a, b)); };
+        if (swept) {
+            sweep.check_by_sweep(std::span<const std::uint32_t>(entries), std::span<const Box<double, 3>>(boxes),
+                                 std::span<const BoxId>(ids), floor, report, home);
+        } else {
+            sweep.check_all_pairs(std::span<const std::uint32_t>(entries), std::span<const Box<double, 3>>(boxes), floor,
+                                  report, home);
+        }
+        EXPECT_EQ(pairs, (PairSet{{0U, 40U}}));
+        EXPECT_EQ(home.size(), boxes.size());
+    }
+}
+
+}  // namespace
+}  // namespace smb::detail
