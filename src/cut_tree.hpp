@@ -72,20 +72,11 @@ template <std::floating_point Real>
     return segment_of(cuts, value);
 }
 
-/// The segment of a box's max, given `lo`, its min's segment: lo, lo + 1, or lo + 2 standing
-/// for any later one (a box that spans more than two segments leaves the levels, whichever its
-/// last). Without a branch: whether a box crosses the plane after its min is a coin toss from
-/// one box to the next (about one in four at 1M in 3D), which a branch would mispredict.
 template <std::floating_point Real>
-[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_of_max(std::span<const Real> cuts, Real max,
-                                                                        std::uint32_t lo) noexcept {
-    const std::size_t n = cuts.size();
-    if (n == 0) return 0;
-    const Real* last = cuts.data() + (n - 1);
-    const Real* next = cuts.data() + lo;
-    const bool past_next = lo < n && *std::min(next, last) <= max;
-    const bool past_after = lo + 1 < n && *std::min(next + 1, last) <= max;
-    return lo + (past_next ? 1U : 0U) + (past_next && past_after ? 1U : 0U);
+[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value,
+                                                std::uint32_t hint) noexcept {
+    std::size_t unused = 0;
+    return segment_near(cuts, value, hint, unused);
 }
 
 template <std::floating_point Real, int Dim>

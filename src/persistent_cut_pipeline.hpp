@@ -177,18 +177,6 @@ private:
     double regroup_first_level(std::size_t n, std::span<const Box<Real, Dim>> boxes,
                                std::vector<Position>& out, std::vector<std::uint32_t>& out_begin);
     void publish_marks();
-    /// The stack pass's step: `entry` to the next free place of segment lo and, when it spans
-    /// two, of segment hi. Without a branch: whether a box spans two segments changes from one
-    /// box to the next about as a coin toss (one in four at 1M in 3D), unless the entries come
-    /// sorted on the level's axis; the second write then goes to a place no one reads.
-    [[gnu::always_inline]] static void place_in_segments(Position* target, std::uint32_t* cursor, std::uint32_t lo,
-                                                         std::uint32_t hi, Position entry) noexcept {
-        Position discarded;
-        target[cursor[lo]++] = entry;
-        const bool spans = hi != lo;
-        *(spans ? target + cursor[hi] : &discarded) = entry;
-        cursor[hi] += spans ? 1U : 0U;
-    }
     void judge_hints(int level);
     template <class Report>
     std::size_t check_cells(std::span<const Box<Real, Dim>> boxes, Report& report);
@@ -485,7 +473,7 @@ std::uint32_t PersistentCutPipeline<Real, Dim, Input>::locate_group(int level, s
                 misses += found - lo + 1 > 2 ? 1U : 0U;
                 lo = found;
             }
-            const std::uint32_t hi = segment_of_max(planes, box.max[axis], lo);
+            const std::uint32_t hi = segment_near(planes, box.max[axis], lo);
             if (hi - lo > 1) {
                 worker.marks.push_back(position);
                 // Counted already if it was registered in an earlier group of this level.
@@ -613,7 +601,8 @@ double PersistentCutPipeline<Real, Dim, Input>::regroup_first_level(std::size_t 
             const std::uint32_t lo = lo_of(range);
             const std::uint32_t hi = hi_of(range);
             if (lo > hi) continue;
-            place_in_segments(target, cursor, lo, hi, static_cast<Position>(i));
+            target[cursor[lo]++] = static_cast<Position>(i);
+            if (hi != lo) target[cursor[hi]++] = static_cast<Position>(i);
         }
     }
     return cutting;
@@ -704,7 +693,8 @@ double PersistentCutPipeline<Real, Dim, Input>::regroup_level(int level, std::sp
             const std::uint32_t lo = lo_of(range);
             const std::uint32_t hi = hi_of(range);
             if (lo > hi) continue;
-            place_in_segments(target, cursor, lo, hi, in[i]);
+            target[cursor[lo]++] = in[i];
+            if (hi != lo) target[cursor[hi]++] = in[i];
         }
     }
     return cutting;

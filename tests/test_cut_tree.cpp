@@ -107,26 +107,5 @@ TEST(CutTree, SegmentNearTakesTheHintOrASegmentBesideItWithoutASearch) {
     EXPECT_EQ(misses, 2U) << "two segments away needs the search";
 }
 
-TEST(CutTree, SegmentOfMaxIsTheMaxSegmentUpToTwoPastTheMin) {
-    std::mt19937_64 random(5);
-    for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{3}, std::size_t{40},
-                                std::size_t{100}}) {
-        std::vector<float> planes;
-        for (std::size_t i = 0; i < n; ++i) planes.push_back(static_cast<float>(i) * 0.75F);
-        const std::span<const float> cuts(planes);
-        std::uniform_real_distribution<float> value(-3.0F, static_cast<float>(n) + 3.0F);
-        for (int trial = 0; trial < 5000; ++trial) {
-            float min = value(random);
-            float max = value(random);
-            if (trial % 7 == 0 && n > 0) min = planes[random() % n];  // on a plane
-            if (trial % 11 == 0) max = min;                            // a point
-            if (max < min) std::swap(min, max);
-            const std::uint32_t lo = segment_of(cuts, min);
-            const std::uint32_t expected = std::min(segment_of(cuts, max), lo + 2);
-            ASSERT_EQ(segment_of_max(cuts, max, lo), expected) << "n " << n << ", min " << min << ", max " << max;
-        }
-    }
-}
-
 }  // namespace
 }  // namespace smb::detail
