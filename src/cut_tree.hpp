@@ -79,6 +79,22 @@ template <std::floating_point Real>
     return segment_near(cuts, value, hint, unused);
 }
 
+/// The segment of a box's max, given `lo`, its min's segment: lo, lo + 1, or lo + 2 standing
+/// for any later one (a box that spans more than two segments leaves the levels, whichever its
+/// last). `cuts` must be a group's planes from CutTree::cuts(), which are followed by two NaN,
+/// so that the two planes after lo can be read without a bounds test, and a NaN never counts
+/// as passed. No branch: whether a box crosses the plane after its min is a coin toss from one
+/// box to the next (one in four at 1M in 3D) unless the boxes come sorted, which the cells
+/// checked pair by pair no longer leave them (cell_sweep.hpp).
+template <std::floating_point Real>
+[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_of_max(std::span<const Real> cuts, Real max,
+                                                                        std::uint32_t lo) noexcept {
+    const Real* next = cuts.data() + lo;
+    const bool past_next = next[0] <= max;
+    const bool past_after = next[1] <= max;
+    return lo + (past_next ? 1U : 0U) + (past_next && past_after ? 1U : 0U);
+}
+
 template <std::floating_point Real, int Dim>
 class CutTree {
 public:
@@ -98,7 +114,13 @@ public:
         for (int level = 0; level <= Dim; ++level) {
             groups_[level] = groups;
             if (level < Dim) {
-                cuts_[level].assign(groups * (k_ - 1), Real{0});
+                cuts_[level].assign(groups * (k_ + 1), Real{0});
+                // Two NaN past each group's planes: segment_of_max() reads them, and no
+                // comparison with NaN holds.
+                for (std::size_t g = 0; g < groups; ++g) {
+                    cuts_[level][g * (k_ + 1) + k_ - 1] = std::numeric_limits<Real>::quiet_NaN();
+                    cuts_[level][g * (k_ + 1) + k_] = std::numeric_limits<Real>::quiet_NaN();
+                }
                 limit_[level].assign(groups, 0);  // 0: never cut
                 groups *= k_;
             }
@@ -114,8 +136,9 @@ public:
         groups_ = {};
     }
 
+    /// The k - 1 planes of a group, in order, followed in memory by two NaN (segment_of_max()).
     [[nodiscard]] std::span<const Real> cuts(int level, std::size_t group) const noexcept {
-        return {cuts_[level].data() + group * (k_ - 1), k_ - 1};
+        return {cuts_[level].data() + group * (k_ + 1), k_ - 1};
     }
 
     /// True when group `group` of `level` must be cut (again) before its boxes are bucketed:
@@ -134,7 +157,7 @@ public:
     /// leave segments empty and one segment full. The caller then sets the group's band with
     /// set_band().
     void cut(int level, std::size_t group, QuantileSelector<Real>& selector) {
-        Real* out = cuts_[level].data() + group * (k_ - 1);
+        Real* out = cuts_[level].data() + group * (k_ + 1);
         if (k_ > 1) {
             if (selector.keys.empty()) {
                 std::fill(out, out + (k_ - 1), Real{0});
@@ -184,7 +207,7 @@ public:
     /// Lower plane of segment `segment` of group `group` (-inf for the first).
     [[nodiscard]] Real lower(int level, std::size_t group, std::uint32_t segment) const noexcept {
         return segment == 0 ? -std::numeric_limits<Real>::infinity()
-                            : cuts_[level][group * (k_ - 1) + segment - 1];
+                            : cuts_[level][group * (k_ + 1) + segment - 1];
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {

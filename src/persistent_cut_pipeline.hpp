@@ -473,7 +473,7 @@ std::uint32_t PersistentCutPipeline<Real, Dim, Input>::locate_group(int level, s
                 misses += found - lo + 1 > 2 ? 1U : 0U;
                 lo = found;
             }
-            const std::uint32_t hi = segment_near(planes, box.max[axis], lo);
+            const std::uint32_t hi = segment_of_max(planes, box.max[axis], lo);
             if (hi - lo > 1) {
                 worker.marks.push_back(position);
                 // Counted already if it was registered in an earlier group of this level.

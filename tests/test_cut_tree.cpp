@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <span>
 #include <vector>
@@ -105,6 +106,34 @@ TEST(CutTree, SegmentNearTakesTheHintOrASegmentBesideItWithoutASearch) {
     EXPECT_EQ(segment_near(cuts, 0.5, 2, misses), 0U);
     EXPECT_EQ(segment_near(cuts, 4.5, 2, misses), 4U);
     EXPECT_EQ(misses, 2U) << "two segments away needs the search";
+}
+
+TEST(CutTree, SegmentOfMaxIsTheMaxSegmentUpToTwoPastTheMin) {
+    std::mt19937_64 random(5);
+    for (const std::uint32_t k : {1U, 2U, 3U, 4U, 41U, 101U}) {
+        CutTree<float, 2> tree;
+        tree.reshape(k);
+        for (std::size_t group = 0; group < tree.groups(1); ++group) {
+            QuantileSelector<float> selector;
+            for (std::uint32_t i = 0; i < 4 * k; ++i) selector.keys.push_back(static_cast<float>((i * 37 + group) % (4 * k)));
+            tree.cut(1, group, selector);
+        }
+        std::uniform_real_distribution<float> value(-3.0F, static_cast<float>(4 * k) + 3.0F);
+        for (int trial = 0; trial < 5000; ++trial) {
+            const std::size_t group = random() % tree.groups(1);
+            const std::span<const float> cuts = tree.cuts(1, group);
+            float min = value(random);
+            float max = value(random);
+            if (trial % 7 == 0 && !cuts.empty()) min = cuts[random() % cuts.size()];  // on a plane
+            if (trial % 11 == 0) max = min;                                              // a point
+            if (trial % 13 == 0) max = std::numeric_limits<float>::infinity();
+            if (max < min) std::swap(min, max);
+            const std::uint32_t lo = segment_of(cuts, min);
+            const std::uint32_t expected = std::min(segment_of(cuts, max), lo + 2);
+            ASSERT_EQ(segment_of_max(cuts, max, lo), expected)
+                << "k " << k << ", group " << group << ", min " << min << ", max " << max;
+        }
+    }
 }
 
 }  // namespace
