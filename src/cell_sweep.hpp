@@ -268,26 +268,42 @@ private:
     template <class Report>
     void sweep(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
                std::vector<std::uint32_t>& home) const {
+        test_rows<true>(m, boxes, report, home);
+    }
+
+    // Every box i against every box after it, a group of lanes at a time, on all axes both ways
+    // (no order to lean on); the lanes past m hold the padding, which no test passes.
+    template <class Report>
+    void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
+                        std::vector<std::uint32_t>& home) const {
+        test_rows<false>(m, boxes, report, home);
+    }
+
+    // Either way, pairs whose lower intersection corner lies in another cell drop out through
+    // `inside`, and every box whose own lower corner lies here joins `home`.
+    template <bool Swept, class Report>
+    void test_rows(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
+                   std::vector<std::uint32_t>& home) const {
 #if SMB_SWEEP_AVX2
         if (cpu_has_avx2()) {
-            sweep_avx2(m, boxes, report, home);
+            test_rows_avx2<Swept>(m, boxes, report, home);
             return;
         }
 #endif
-        sweep_lanes<4>(m, boxes, report, home);
+        rows_in_lanes<4, Swept>(m, boxes, report, home);
     }
 
 #if SMB_SWEEP_AVX2
-    template <class Report>
-    [[gnu::target("avx2")]] void sweep_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
-                                            std::vector<std::uint32_t>& home) const {
-        sweep_lanes<8>(m, boxes, report, home);
+    template <bool Swept, class Report>
+    [[gnu::target("avx2")]] void test_rows_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
+                                                std::vector<std::uint32_t>& home) const {
+        rows_in_lanes<8, Swept>(m, boxes, report, home);
     }
 #endif
 
-    template <std::size_t Lanes, class Report>
-    [[gnu::always_inline]] inline void sweep_lanes(std::size_t m, std::span<const Box<Real, Dim>> boxes,
-                                                   Report& report, std::vector<std::uint32_t>& home) const {
+    template <std::size_t Lanes, bool Swept, class Report>
+    [[gnu::always_inline]] inline void rows_in_lanes(std::size_t m, std::span<const Box<Real, Dim>> boxes,
+                                                     Report& report, std::vector<std::uint32_t>& home) const {
         using FloatLanes = typename SweepLanes<Lanes>::Floats;
         using MaskLanes = typename SweepLanes<Lanes>::Masks;
         const std::uint32_t* key = columns_.key.data();
@@ -295,85 +311,26 @@ private:
         const std::uint32_t* position = columns_.position.data();
         for (std::size_t i = 0; i < m; ++i) {
             if (inside[i] == static_cast<Mask>(kAllInside)) home.push_back(position[i]);
-            const std::uint32_t stop = monotone_key(columns_.max[0][i]);
-            std::array<float, Dim> low{}, high{};  // low[0] unused: see above
+            const std::uint32_t stop = Swept ? monotone_key(columns_.max[0][i]) : 0;
+            std::array<float, Dim> low{}, high{};  // swept: low[0] unused, see above
             for (int k = 0; k < Dim; ++k) {
                 low[k] = columns_.min[k][i];
                 high[k] = columns_.max[k][i];
             }
             const Mask own = inside[i];
-            for (std::size_t j = i + 1; key[j] <= stop; j += Lanes) {
-                MaskLanes others;
-                load(others, inside + j);
-                MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
-                FloatLanes lower, upper;
-                load(lower, columns_.min[0].data() + j);
-                hit &= lower <= high[0];
-                for (int k = 1; k < Dim; ++k) {
-                    load(lower, columns_.min[k].data() + j);
-                    load(upper, columns_.max[k].data() + j);
-                    hit &= lower <= high[k];
-                    hit &= upper >= low[k];
-                }
-                unsigned bits = lane_bits<Lanes>(hit);
-                while (bits != 0) {
-                    const std::uint32_t other = position[j + static_cast<std::size_t>(std::countr_zero(bits))];
-                    bits &= bits - 1;
-                    if (kExactLanes || overlaps(boxes[position[i]], boxes[other])) report(position[i], other);
-                }
-            }
-        }
-    }
-
-    // Every box i against every box after it, a group of lanes at a time, on all axes both ways
-    // (no order to lean on); the lanes past m hold the padding, which no test passes. Pairs
-    // whose lower intersection corner lies in another cell drop out through `inside`, as in
-    // the sweep.
-    template <class Report>
-    void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
-                        std::vector<std::uint32_t>& home) const {
-#if SMB_SWEEP_AVX2
-        if (cpu_has_avx2()) {
-            test_all_pairs_avx2(m, boxes, report, home);
-            return;
-        }
-#endif
-        all_pairs_lanes<4>(m, boxes, report, home);
-    }
-
-#if SMB_SWEEP_AVX2
-    template <class Report>
-    [[gnu::target("avx2")]] void test_all_pairs_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes,
-                                                     Report& report, std::vector<std::uint32_t>& home) const {
-        all_pairs_lanes<8>(m, boxes, report, home);
-    }
-#endif
-
-    template <std::size_t Lanes, class Report>
-    [[gnu::always_inline]] inline void all_pairs_lanes(std::size_t m, std::span<const Box<Real, Dim>> boxes,
-                                                       Report& report, std::vector<std::uint32_t>& home) const {
-        using FloatLanes = typename SweepLanes<Lanes>::Floats;
-        using MaskLanes = typename SweepLanes<Lanes>::Masks;
-        const Mask* inside = columns_.inside.data();
-        const std::uint32_t* position = columns_.position.data();
-        for (std::size_t i = 0; i < m; ++i) {
-            if (inside[i] == static_cast<Mask>(kAllInside)) home.push_back(position[i]);
-            std::array<float, Dim> low{}, high{};
-            for (int k = 0; k < Dim; ++k) {
-                low[k] = columns_.min[k][i];
-                high[k] = columns_.max[k][i];
-            }
-            const Mask own = inside[i];
-            for (std::size_t j = i + 1; j < m; j += Lanes) {
+            for (std::size_t j = i + 1; Swept ? key[j] <= stop : j < m; j += Lanes) {
                 MaskLanes others;
                 load(others, inside + j);
                 MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
                 for (int k = 0; k < Dim; ++k) {
-                    FloatLanes lower, upper;
+                    FloatLanes lower;
                     load(lower, columns_.min[k].data() + j);
-                    load(upper, columns_.max[k].data() + j);
                     hit &= lower <= high[k];
-                    hit &= upper >= low[k];
+                    if (!Swept || k > 0) {
+                        FloatLanes upper;
+                        load(upper, columns_.max[k].data() + j);
+                        hit &= upper >= low[k];
+                    }
                 }
                 unsigned bits = lane_bits<Lanes>(hit);
                 while (bits != 0) {
