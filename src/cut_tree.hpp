@@ -72,13 +72,6 @@ template <std::floating_point Real>
     return segment_of(cuts, value);
 }
 
-template <std::floating_point Real>
-[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value,
-                                                std::uint32_t hint) noexcept {
-    std::size_t unused = 0;
-    return segment_near(cuts, value, hint, unused);
-}
-
 /// The segment of a box's max, given `lo`, its min's segment: lo, lo + 1, or lo + 2 standing
 /// for any later one (a box that spans more than two segments leaves the levels, whichever its
 /// last). `cuts` must be a group's planes from CutTree::cuts(), which are followed by two NaN,
