@@ -6,7 +6,8 @@
 // - Up to kAllPairsLimit boxes (nearly every cell: the cuts aim at about 24 boxes a cell, about
 //   46 registered in 3D): every pair is tested, in the order the boxes were registered. No keys,
 //   no sort, and loops whose lengths do not depend on the boxes' sizes, which a sweep's scan
-//   does, at one mispredicted exit per box.
+//   does, at one mispredicted exit per box. The hits are written down without a branch (a
+//   compress through a permutation table) and reported after the rows.
 // - Beyond (a crowd the cuts cannot split, or a large target population): the boxes get local
 //   numbers (the global-local map of the paper), are sorted on x by DIS with one increment (the
 //   list arrives almost sorted: it follows last step's order), and are swept on x with direct
@@ -32,6 +33,7 @@
 #include <span>
 #include <vector>
 
+#include "assert.hpp"
 #include "box_store.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
@@ -97,6 +99,9 @@ struct SweepLanes<8> {
 #else
 #define SMB_SWEEP_AVX2 0
 #endif
+#if SMB_SWEEP_AVX2
+#include <immintrin.h>
+#endif
 
 /// One bit per lane whose mask is set (all ones): a single instruction on x86-64, where the
 /// compiler would otherwise take the lanes out one by one.
@@ -119,6 +124,40 @@ template <>
 }
 #endif
 
+/// Writes the values of the lanes set in `bits` to `out`, in lane order, and returns the end of
+/// what it wrote; the Lanes slots from `out` on may all be written. No branch on the bits.
+template <std::size_t Lanes>
+[[gnu::always_inline]] inline std::uint32_t* append_set_lanes(std::uint32_t* out, unsigned bits,
+                                                              const typename SweepLanes<Lanes>::Masks& values) noexcept {
+    for (std::size_t lane = 0; lane < Lanes; ++lane) {
+        *out = static_cast<std::uint32_t>(values[lane]);
+        out += (bits >> lane) & 1U;
+    }
+    return out;
+}
+#if SMB_SWEEP_AVX2
+/// For each byte of lane bits, the numbers of its set lanes, lowest first, a byte each: the
+/// permutation that packs those lanes to the front of a register (vpermd).
+inline constexpr std::array<std::uint64_t, 256> kSetLaneOrder = [] {
+    std::array<std::uint64_t, 256> table{};
+    for (unsigned bits = 0; bits < 256; ++bits) {
+        unsigned filled = 0;
+        for (unsigned lane = 0; lane < 8; ++lane) {
+            if ((bits >> lane & 1U) != 0) table[bits] |= std::uint64_t{lane} << (8 * filled++);
+        }
+    }
+    return table;
+}();
+template <>
+[[gnu::target("avx2,popcnt")]] inline std::uint32_t* append_set_lanes<8>(std::uint32_t* out, unsigned bits,
+                                                                         const SweepLanes<8>::Masks& values) noexcept {
+    const __m256i order = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kSetLaneOrder[bits])));
+    const __m256i packed = _mm256_permutevar8x32_epi32(__builtin_bit_cast(__m256i, values), order);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), packed);
+    return out + std::popcount(bits);
+}
+#endif
+
 template <std::floating_point Real, int Dim>
 class CellSweep {
 public:
@@ -129,6 +168,8 @@ public:
     /// cells' usual ~46 boxes (the check 94 -> 74 ms in 3D, 45 -> 38 ms in 2D) and still at ~130
     /// (a target population of 64); its cost grows as m^2 / 16 lane groups, so crowds are swept.
     static constexpr std::size_t kAllPairsLimit = 128;
+    /// check_all_pairs() numbers a cell's boxes in 16 bits: it takes cells of up to this many.
+    static constexpr std::size_t kMostPaired = std::size_t{1} << 16;
 
     /// Reports every pair of `entries` (positions of the boxes registered in the cell) whose
     /// lower intersection corner lies in the cell, and appends to `home` the positions whose own
@@ -176,7 +217,8 @@ public:
         for (const auto& column : columns_.min) bytes += column.capacity() * sizeof(float);
         for (const auto& column : columns_.max) bytes += column.capacity() * sizeof(float);
         bytes += columns_.inside.capacity() * sizeof(Mask) + columns_.key.capacity() * sizeof(std::uint32_t) +
-                 columns_.position.capacity() * sizeof(std::uint32_t);
+                 columns_.position.capacity() * sizeof(std::uint32_t) +
+                 (hits_.capacity() + own_home_.capacity()) * sizeof(std::uint32_t);
         return bytes;
     }
 
@@ -268,71 +310,108 @@ private:
     template <class Report>
     void sweep(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
                std::vector<std::uint32_t>& home) const {
-        test_rows<true>(m, boxes, report, home);
-    }
-
-    // Every box i against every box after it, a group of lanes at a time, on all axes both ways
-    // (no order to lean on); the lanes past m hold the padding, which no test passes.
-    template <class Report>
-    void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
-                        std::vector<std::uint32_t>& home) const {
-        test_rows<false>(m, boxes, report, home);
-    }
-
-    // Either way, pairs whose lower intersection corner lies in another cell drop out through
-    // `inside`, and every box whose own lower corner lies here joins `home`.
-    template <bool Swept, class Report>
-    void test_rows(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
-                   std::vector<std::uint32_t>& home) const {
 #if SMB_SWEEP_AVX2
         if (cpu_has_avx2()) {
-            test_rows_avx2<Swept>(m, boxes, report, home);
+            sweep_avx2(m, boxes, report, home);
             return;
         }
 #endif
-        rows_in_lanes<4, Swept>(m, boxes, report, home);
+        sweep_in_lanes<4>(m, boxes, report, home);
+    }
+
+    // Every box i against every box after it, a group of lanes at a time, on all axes both ways
+    // (no order to lean on); the lanes past m hold the padding, which no test passes. The rows
+    // only write the hits down, without a branch (append_set_lanes); the report follows. A
+    // branch on each group's hits mispredicted about once a group in four.
+    template <class Report>
+    void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
+                        std::vector<std::uint32_t>& home) {
+        SMB_ASSERT(m <= kMostPaired, "a cell tested pair by pair numbers its boxes in 16 bits");
+        const std::size_t most_hits = m * (m - (m > 0 ? 1 : 0)) / 2 + kPadding;
+        if (hits_.size() < most_hits) hits_.resize(most_hits);
+        std::size_t count = 0;
+#if SMB_SWEEP_AVX2
+        if (cpu_has_avx2()) {
+            count = pair_rows_avx2(m);
+        } else {
+            count = pair_rows_in_lanes<4>(m);
+        }
+#else
+        count = pair_rows_in_lanes<4>(m);
+#endif
+        const std::uint32_t* position = columns_.position.data();
+        for (std::size_t t = 0; t < count; ++t) {
+            const std::uint32_t a = position[hits_[t] >> 16];
+            const std::uint32_t b = position[hits_[t] & 0xFFFFU];
+            if (kExactLanes || overlaps(boxes[a], boxes[b])) report(a, b);
+        }
+        append_home(m, home);
+    }
+
+    // Every box whose lower corner lies in the cell, in the order of the layout; a branch here
+    // would guess wrong for one box in four. Gathered apart first: growing `home` by m and back
+    // would make it outgrow the capacity reserved for it, at the last cells.
+    void append_home(std::size_t m, std::vector<std::uint32_t>& home) {
+        if (own_home_.size() < m) own_home_.resize(m);
+        std::uint32_t* out = own_home_.data();
+        for (std::size_t r = 0; r < m; ++r) {
+            *out = columns_.position[r];
+            out += columns_.inside[r] == static_cast<Mask>(kAllInside) ? 1 : 0;
+        }
+        home.insert(home.end(), own_home_.data(), out);
     }
 
 #if SMB_SWEEP_AVX2
-    template <bool Swept, class Report>
-    [[gnu::target("avx2")]] void test_rows_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
-                                                std::vector<std::uint32_t>& home) const {
-        rows_in_lanes<8, Swept>(m, boxes, report, home);
+    template <class Report>
+    [[gnu::target("avx2")]] void sweep_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
+                                            std::vector<std::uint32_t>& home) const {
+        sweep_in_lanes<8>(m, boxes, report, home);
+    }
+    [[gnu::target("avx2,popcnt")]] std::size_t pair_rows_avx2(std::size_t m) {
+        return pair_rows_in_lanes<8>(m);
     }
 #endif
 
-    template <std::size_t Lanes, bool Swept, class Report>
-    [[gnu::always_inline]] inline void rows_in_lanes(std::size_t m, std::span<const Box<Real, Dim>> boxes,
-                                                     Report& report, std::vector<std::uint32_t>& home) const {
+    /// One bit for each of the candidates j..j+Lanes-1 that box i (its `own` inside bits, its
+    /// `low` and `high` corners) may report: tested both ways on every axis, except the lower
+    /// end on x when swept.
+    template <std::size_t Lanes, bool Swept>
+    [[gnu::always_inline]] inline unsigned lanes_hit(std::size_t j, Mask own, const std::array<float, Dim>& low,
+                                                     const std::array<float, Dim>& high) const {
         using FloatLanes = typename SweepLanes<Lanes>::Floats;
         using MaskLanes = typename SweepLanes<Lanes>::Masks;
+        MaskLanes others;
+        load(others, columns_.inside.data() + j);
+        MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
+        for (int k = 0; k < Dim; ++k) {
+            FloatLanes lower;
+            load(lower, columns_.min[k].data() + j);
+            hit &= lower <= high[k];
+            if (!Swept || k > 0) {
+                FloatLanes upper;
+                load(upper, columns_.max[k].data() + j);
+                hit &= upper >= low[k];
+            }
+        }
+        return lane_bits<Lanes>(hit);
+    }
+
+    template <std::size_t Lanes, class Report>
+    [[gnu::always_inline]] inline void sweep_in_lanes(std::size_t m, std::span<const Box<Real, Dim>> boxes,
+                                                      Report& report, std::vector<std::uint32_t>& home) const {
         const std::uint32_t* key = columns_.key.data();
         const Mask* inside = columns_.inside.data();
         const std::uint32_t* position = columns_.position.data();
         for (std::size_t i = 0; i < m; ++i) {
             if (inside[i] == static_cast<Mask>(kAllInside)) home.push_back(position[i]);
-            const std::uint32_t stop = Swept ? monotone_key(columns_.max[0][i]) : 0;
-            std::array<float, Dim> low{}, high{};  // swept: low[0] unused, see above
+            const std::uint32_t stop = monotone_key(columns_.max[0][i]);
+            std::array<float, Dim> low{}, high{};  // low[0] unused, see sweep()
             for (int k = 0; k < Dim; ++k) {
                 low[k] = columns_.min[k][i];
                 high[k] = columns_.max[k][i];
             }
-            const Mask own = inside[i];
-            for (std::size_t j = i + 1; Swept ? key[j] <= stop : j < m; j += Lanes) {
-                MaskLanes others;
-                load(others, inside + j);
-                MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
-                for (int k = 0; k < Dim; ++k) {
-                    FloatLanes lower;
-                    load(lower, columns_.min[k].data() + j);
-                    hit &= lower <= high[k];
-                    if (!Swept || k > 0) {
-                        FloatLanes upper;
-                        load(upper, columns_.max[k].data() + j);
-                        hit &= upper >= low[k];
-                    }
-                }
-                unsigned bits = lane_bits<Lanes>(hit);
+            for (std::size_t j = i + 1; key[j] <= stop; j += Lanes) {
+                unsigned bits = lanes_hit<Lanes, true>(j, inside[i], low, high);
                 while (bits != 0) {
                     const std::uint32_t other = position[j + static_cast<std::size_t>(std::countr_zero(bits))];
                     bits &= bits - 1;
@@ -340,6 +419,30 @@ private:
                 }
             }
         }
+    }
+
+    /// Writes hits_ with every pair (i << 16 | j, i < j) that passes the lanes' test, row by
+    /// row; returns their number.
+    template <std::size_t Lanes>
+    [[gnu::always_inline]] inline std::size_t pair_rows_in_lanes(std::size_t m) {
+        using MaskLanes = typename SweepLanes<Lanes>::Masks;
+        MaskLanes lane{};
+        for (std::size_t l = 0; l < Lanes; ++l) lane[l] = static_cast<Mask>(l);
+        std::uint32_t* out = hits_.data();
+        for (std::size_t i = 0; i < m; ++i) {
+            std::array<float, Dim> low{}, high{};
+            for (int k = 0; k < Dim; ++k) {
+                low[k] = columns_.min[k][i];
+                high[k] = columns_.max[k][i];
+            }
+            const Mask own = columns_.inside[i];
+            MaskLanes pair = lane + static_cast<Mask>((i << 16) | (i + 1));
+            for (std::size_t j = i + 1; j < m; j += Lanes) {
+                out = append_set_lanes<Lanes>(out, lanes_hit<Lanes, false>(j, own, low, high), pair);
+                pair += static_cast<Mask>(Lanes);
+            }
+        }
+        return static_cast<std::size_t>(out - hits_.data());
     }
 
     // Boxes whose keys are equal arrive in an order that depends on the previous step; ordering
@@ -384,6 +487,8 @@ private:
 
     std::vector<std::uint64_t> order_;
     CellColumns columns_;
+    std::vector<std::uint32_t> hits_;      // the pairs the lanes passed, as (i << 16 | j), in row order
+    std::vector<std::uint32_t> own_home_;  // the cell's home boxes, on their way to `home`
 };
 
 }  // namespace smb::detail

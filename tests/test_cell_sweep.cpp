@@ -199,3 +199,40 @@ TEST(CellSweep, DoubleGapsBelowFloatPrecisionAreTestedExactly) {
 
 }  // namespace
 }  // namespace smb::detail
+
+namespace smb::detail {
+namespace {
+
+/// append_set_lanes<Lanes> for every pattern of lane bits: the set lanes' values, in lane order,
+/// and the end just past them. Runs the eight lanes only where they can run (AVX2).
+template <std::size_t Lanes>
+void expect_set_lanes_appended() {
+    typename SweepLanes<Lanes>::Masks values{};
+    for (std::size_t lane = 0; lane < Lanes; ++lane) values[lane] = static_cast<std::int32_t>(100 + 7 * lane);
+    for (unsigned bits = 0; bits < (1U << Lanes); ++bits) {
+        SCOPED_TRACE(::testing::Message() << "lanes " << Lanes << ", bits " << bits);
+        std::vector<std::uint32_t> out(2 + 2 * Lanes, 0xDEADBEEFU);
+        std::vector<std::uint32_t> expected;
+        for (std::size_t lane = 0; lane < Lanes; ++lane) {
+            if ((bits >> lane & 1U) != 0) expected.push_back(static_cast<std::uint32_t>(values[lane]));
+        }
+        std::uint32_t* end = append_set_lanes<Lanes>(out.data() + 1, bits, values);
+        ASSERT_EQ(end, out.data() + 1 + expected.size());
+        EXPECT_TRUE(std::equal(expected.begin(), expected.end(), out.begin() + 1));
+        EXPECT_EQ(out.front(), 0xDEADBEEFU) << "wrote before its start";
+        EXPECT_TRUE(std::all_of(out.begin() + 1 + Lanes, out.end(), [](std::uint32_t v) { return v == 0xDEADBEEFU; }))
+            << "wrote past its lanes";
+    }
+}
+
+TEST(CellSweep, AppendSetLanesPacksTheSetLanesInLaneOrder) {
+    expect_set_lanes_appended<4>();
+#if SMB_SWEEP_AVX2
+    if (cpu_has_avx2()) expect_set_lanes_appended<8>();
+#else
+    expect_set_lanes_appended<8>();
+#endif
+}
+
+}  // namespace
+}  // namespace smb::detail
