@@ -19,46 +19,49 @@ namespace smb::detail {
 class PairOutput {
 public:
     /// `chunk` is the caller's buffer, kept between detections so that none allocates it again.
+    /// It is held at the chunk's full size, and filled_ counts the pairs in it: a pair is then
+    /// one store, where push_back tested the capacity and called out of line.
     PairOutput(std::vector<Pair>& chunk, std::size_t chunk_size, const PairSink& sink, std::size_t& count)
         : chunk_(chunk), chunk_size_(chunk_size), sink_(sink), count_(count) {
-        chunk_.clear();
-        chunk_.reserve(chunk_size_);
+        chunk_.resize(chunk_size_);
     }
 
     void operator()(BoxId a, BoxId b) {
-        if (b < a) std::swap(a, b);
-        chunk_.push_back(Pair{a, b});
-        if (chunk_.size() == chunk_size_) send_chunk();
+        chunk_[filled_++] = Pair{std::min(a, b), std::max(a, b)};
+        if (filled_ == chunk_size_) send_chunk();
     }
 
     void append(std::span<const Pair> ordered) {
         while (!ordered.empty()) {
-            if (chunk_.empty() && ordered.size() >= chunk_size_) {
+            if (filled_ == 0 && ordered.size() >= chunk_size_) {
                 count_ += chunk_size_;
                 sink_(ordered.first(chunk_size_));
                 ordered = ordered.subspan(chunk_size_);
                 continue;
             }
-            const std::size_t take = std::min(ordered.size(), chunk_size_ - chunk_.size());
-            chunk_.insert(chunk_.end(), ordered.begin(), ordered.begin() + static_cast<std::ptrdiff_t>(take));
+            const std::size_t take = std::min(ordered.size(), chunk_size_ - filled_);
+            std::copy_n(ordered.begin(), take, chunk_.begin() + static_cast<std::ptrdiff_t>(filled_));
+            filled_ += take;
             ordered = ordered.subspan(take);
-            if (chunk_.size() == chunk_size_) send_chunk();
+            if (filled_ == chunk_size_) send_chunk();
         }
     }
 
     void flush() {
-        if (!chunk_.empty()) send_chunk();
+        if (filled_ != 0) send_chunk();
     }
 
 private:
     void send_chunk() {
-        count_ += chunk_.size();
-        sink_(chunk_);
-        chunk_.clear();
+        count_ += filled_;
+        const std::size_t filled = filled_;
+        filled_ = 0;  // first: a sink that throws leaves an empty chunk behind
+        sink_(std::span<const Pair>(chunk_.data(), filled));
     }
 
     std::vector<Pair>& chunk_;
     std::size_t chunk_size_;
+    std::size_t filled_ = 0;
     const PairSink& sink_;
     std::size_t& count_;
 };
