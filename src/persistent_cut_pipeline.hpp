@@ -91,6 +91,7 @@ public:
         origin_ = origin;
         cuts_.forget();
         cold_ = true;
+        moved_far_ = false;
     }
 
     /// Calls visit(slot) once for every box of the last detection whose held box overlaps `query`
@@ -165,7 +166,6 @@ private:
     void plan_segments(std::size_t n, const WorldSettings& settings);
     void plan_threads(const WorldSettings& settings);
     double run_levels(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids);
-    void renumber_in_cell_order(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids);
     void gather_in_order(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids);
     double regroup_level(int level, std::span<const Position> in, std::span<const std::uint32_t> in_begin,
                          std::span<const Box<Real, Dim>> boxes, std::vector<Position>& out,
@@ -243,6 +243,7 @@ private:
     std::vector<Position> oversized_list_;
     int threads_ = 1;
     bool cold_ = true;                       // the order does not follow the cells (yet)
+    bool moved_far_ = false;                 // ... because most boxes moved far in the last one
     // Per level: locate without the hint, which missed for more than a quarter of the entries
     // in the last detection (boxes that move across cells every step, as at Λ = 0.1).
     std::array<bool, Dim> locate_without_hint_{};
@@ -283,15 +284,17 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     plan_segments(n, settings);
     plan_threads(settings);
     // A cold order (first detection, new cut counts, or boxes that jumped far since the last
-    // step) scatters each cell's boxes over the ordered array: the boxes are then renumbered in
-    // cell order before the check, so that it reads them sequentially.
+    // step) scatters each cell's boxes over the ordered array. The check then reads them out of
+    // order, prefetched; renumbering them in cell order first (a second copy of every box) cost
+    // more than it saved once cells were checked by testing every pair (docs/performance.md).
+    // A fresh order says nothing of the boxes' motion: it follows no cells at all.
+    const bool fresh = cold_ && !moved_far_;
     const bool cold = cold_ || cuts_.segments() != segments_before;
     // In a cold order the previous entry says nothing of the next one's segment.
     if (cold) locate_without_hint_.fill(true);
 
     const auto start = Clock::now();
     const double cutting = run_levels(store_boxes, store_ids);
-    if (cold) renumber_in_cell_order(store_boxes, store_ids);
     const std::span<const Box<Real, Dim>> boxes(ordered_);
     const double regrouping = std::chrono::duration<double>(Clock::now() - start).count();
     stats.sort_seconds = cutting;
@@ -318,7 +321,10 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
         next_order_[i] = order_[next_order_[i]];
     }
     order_.swap(next_order_);
-    cold_ = 2 * far > n;
+    // Left in cell order, the next detection is warm unless most boxes moved far; after a fresh
+    // order, `far` measured the distance from a random order, not a motion.
+    moved_far_ = !fresh && cuts_.segments() == segments_before && 2 * far > n;
+    cold_ = moved_far_;
 }
 
 /// Copies the boxes in order_'s order and regroups them level by level; returns the seconds
@@ -350,45 +356,6 @@ double PersistentCutPipeline<Real, Dim, Input>::run_levels(std::span<const Box<I
         return id_at(x) < id_at(y);
     });
     return cutting;
-}
-
-/// Renumbers the boxes in the order of their home cells (the cell holding their lower corner),
-/// oversized boxes last: order_, the ordered copies, the cell lists and the oversized list
-/// follow. The order a detection leaves behind, without running its levels again.
-template <std::floating_point Real, int Dim, std::floating_point Input>
-void PersistentCutPipeline<Real, Dim, Input>::renumber_in_cell_order(std::span<const Box<Input, Dim>> store_boxes,
-                                                              std::span<const BoxId> store_ids) {
-    std::vector<Position>& cells = lists_[cells_list_];
-    const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];
-    const std::size_t n = order_.size();
-    next_order_.clear();
-    for (std::size_t cell = 0; cell + 1 < cell_begin.size(); ++cell) {
-        if (cell_begin[cell] == cell_begin[cell + 1]) continue;
-        const CellFloor<Real, Dim> floor = floor_of_cell(cell);
-        for (std::uint32_t i = cell_begin[cell]; i < cell_begin[cell + 1]; ++i) {
-            const Box<Real, Dim>& box = ordered_[cells[i]];
-            bool home = true;
-            for (int k = 0; k < Dim; ++k) home &= box.min[k] >= floor[k];
-            if (home) next_order_.push_back(cells[i]);
-        }
-    }
-    next_order_.insert(next_order_.end(), oversized_list_.begin(), oversized_list_.end());
-    SMB_ASSERT(next_order_.size() == n, "every box has exactly one home cell");
-    // ranges_ is free once the levels are done: it holds the new number of each old one.
-    std::vector<std::uint32_t>& renumbered = ranges_;
-    resize_with_slack(renumbered, n);
-    for (std::size_t i = 0; i < n; ++i) {
-        renumbered[next_order_[i]] = static_cast<Position>(i);
-        next_order_[i] = order_[next_order_[i]];
-    }
-    order_.swap(next_order_);
-    gather_in_order(store_boxes, store_ids);
-    const auto entries = static_cast<std::ptrdiff_t>(cells.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
-    for (std::ptrdiff_t i = 0; i < entries; ++i) cells[i] = renumbered[cells[i]];
-    for (Position& position : oversized_list_) position = renumbered[position];
-    oversized_.assign(n, 0);
-    for (const Position position : oversized_list_) oversized_[position] = kPublished;
 }
 
 /// Threads: WorldSettings::threads, 0 for as many as OpenMP offers; one without OpenMP.
