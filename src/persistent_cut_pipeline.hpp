@@ -145,7 +145,7 @@ private:
     };
 
     /// What one thread needs for itself while groups or cells are shared out.
-    struct WorkerScratch {
+    struct alignas(64) WorkerScratch {
         QuantileSelector<Real> quantiles;  // a group's lower ends and the buffers of its axial cut
         std::vector<Position> marks;       // boxes this thread found oversized on this level
         std::vector<std::uint32_t> count;  // level 0: this thread's share of the index array
@@ -156,7 +156,7 @@ private:
     };
     /// The pairs and home boxes of one block of cells (a column), handed on in block order so
     /// that the report is the same whatever the number of threads.
-    struct BlockOutput {
+    struct alignas(64) BlockOutput {
         std::vector<Pair> pairs;
         std::vector<Position> home;
         std::size_t moves = 0;

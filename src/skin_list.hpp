@@ -363,7 +363,7 @@ private:
     }
 
     /// What one thread's share of the containment check found.
-    struct Scan {
+    struct alignas(64) Scan {
         std::vector<Position> fresh;  // boxes out of their fat box, or back in the array
         std::vector<Position> gone;   // positions whose slot just left the array
         std::size_t newly_moved = 0;  // of the fresh ones, those not moved since the rebuild
@@ -440,13 +440,13 @@ private:
     }
 
     /// The pairs found in one block of candidates, and its counts.
-    struct Block {
+    struct alignas(64) Block {
         std::vector<Pair> pairs;
         std::size_t retested = 0;
         std::size_t tombstones = 0;
     };
     /// One thread's buffers: a run of hits waiting to become pairs.
-    struct Worker {
+    struct alignas(64) Worker {
         std::vector<Candidate> hits;
         std::vector<std::uint8_t> sure;
     };
