@@ -27,7 +27,9 @@ public:
     }
 
     void operator()(BoxId a, BoxId b) {
-        chunk_[filled_++] = Pair{std::min(a, b), std::max(a, b)};
+        // Without a branch: which id is the smaller is a coin toss from pair to pair.
+        const BoxId swap = (a ^ b) & (BoxId{0} - BoxId{b < a});
+        chunk_[filled_++] = Pair{a ^ swap, b ^ swap};
         if (filled_ == chunk_size_) send_chunk();
     }
 
