@@ -33,6 +33,7 @@
 #include "growth.hpp"
 #include "held_box.hpp"
 #include "ordered_rounds.hpp"
+#include "pair_output.hpp"
 #include "prefetch.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
@@ -157,7 +158,8 @@ private:
     /// The pairs and home boxes of one block of cells (a column), handed on in block order so
     /// that the report is the same whatever the number of threads.
     struct alignas(64) BlockOutput {
-        std::vector<Pair> pairs;
+        std::vector<Pair> pairs;  // its first `filled` hold this block's pairs
+        std::size_t filled = 0;
         std::vector<Position> home;
         std::size_t moves = 0;
         bool overflowed = false;
@@ -726,19 +728,21 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size
     run_in_ordered_rounds(
         threads_, count, round, blocks_,
         [&](std::size_t item, BlockOutput& block) {
-            block.pairs.clear();
+            block.filled = 0;
             block.home.clear();
             block.overflowed = false;
             block.moves = 0;
+            // The pairs are written by index into an array grown by doubling, not push_back:
+            // one store a pair, where push_back was a call out of line (as in PairOutput).
             auto collect = [&block, this](Position x, Position y) {
-                if (block.pairs.size() >= kBlockPairCap) {
+                if (block.filled == kBlockPairCap) {
                     block.overflowed = true;
                     return;
                 }
                 if (!confirmed(x, y)) return;
-                const BoxId u = id_at(x);
-                const BoxId v = id_at(y);
-                block.pairs.push_back(u < v ? Pair{u, v} : Pair{v, u});
+                if (block.filled == block.pairs.size())
+                    block.pairs.resize(std::min(kBlockPairCap, std::max<std::size_t>(1024, 2 * block.filled)));
+                block.pairs[block.filled++] = ordered_pair(id_at(x), id_at(y));
             };
             block.moves = work(item, collect, block.home, &block.overflowed);
         },
@@ -746,11 +750,10 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size
             if (block.overflowed) {
                 moves += work(item, report_ids, home, nullptr);
             } else {
-                report.append(block.pairs);
+                report.append(std::span<const Pair>(block.pairs.data(), block.filled));
                 home.insert(home.end(), block.home.begin(), block.home.end());
                 moves += block.moves;
             }
-            if (block.pairs.capacity() > 2 * kBlockPairCap) std::vector<Pair>().swap(block.pairs);
         });
     return moves;
 }
