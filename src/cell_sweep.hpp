@@ -168,8 +168,10 @@ public:
     /// cells' usual ~46 boxes (the check 94 -> 74 ms in 3D, 45 -> 38 ms in 2D) and still at ~130
     /// (a target population of 64); its cost grows as m^2 / 16 lane groups, so crowds are swept.
     static constexpr std::size_t kAllPairsLimit = 128;
-    /// check_all_pairs() numbers a cell's boxes in 16 bits: it takes cells of up to this many.
-    static constexpr std::size_t kMostPaired = std::size_t{1} << 16;
+    /// check_all_pairs() packs a pair of local numbers as i << 16 | j in the lanes' signed
+    /// 32-bit integers: it takes cells of up to this many boxes (the pipeline's are at most
+    /// kAllPairsLimit).
+    static constexpr std::size_t kMostPaired = std::size_t{1} << 15;
 
     /// Reports every pair of `entries` (positions of the boxes registered in the cell) whose
     /// lower intersection corner lies in the cell, and appends to `home` the positions whose own
@@ -326,7 +328,7 @@ private:
     template <class Report>
     void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
                         std::vector<std::uint32_t>& home) {
-        SMB_ASSERT(m <= kMostPaired, "a cell tested pair by pair numbers its boxes in 16 bits");
+        SMB_ASSERT(m <= kMostPaired, "a cell tested pair by pair packs two local numbers in 31 bits");
         const std::size_t most_hits = m * (m - (m > 0 ? 1 : 0)) / 2 + kPadding;
         if (hits_.size() < most_hits) hits_.resize(most_hits);
         std::size_t count = 0;
