@@ -210,7 +210,8 @@ public:
         const std::size_t moves = insertion_sort(order, m);
         order_equal_keys(order, m, entries, boxes, ids);
         lay_out_sorted(order, m, entries, boxes, floor);
-        sweep(m, boxes, report, home);
+        sweep(m, boxes, report);
+        append_home(m, home);
         return moves;
     }
 
@@ -310,15 +311,14 @@ private:
     // equal keys are equal values, so min_i <= min_j <= max_j; with double boxes a disorder
     // hidden by equal keys can pass the float test, which the exact test then settles.
     template <class Report>
-    void sweep(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
-               std::vector<std::uint32_t>& home) const {
+    void sweep(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report) const {
 #if SMB_SWEEP_AVX2
         if (cpu_has_avx2()) {
-            sweep_avx2(m, boxes, report, home);
+            sweep_avx2(m, boxes, report);
             return;
         }
 #endif
-        sweep_in_lanes<4>(m, boxes, report, home);
+        sweep_in_lanes<4>(m, boxes, report);
     }
 
     // Every box i against every box after it, a group of lanes at a time, on all axes both ways
@@ -350,9 +350,10 @@ private:
         append_home(m, home);
     }
 
-    // Every box whose lower corner lies in the cell, in the order of the layout; a branch here
-    // would guess wrong for one box in four. Gathered apart first: growing `home` by m and back
-    // would make it outgrow the capacity reserved for it, at the last cells.
+    // Every box whose lower corner lies in the cell, in the order of the layout (x order when
+    // swept, as registered for the pair test); a branch here would guess wrong for one box in
+    // four. Gathered apart first: growing `home` by m and back would make it outgrow the
+    // capacity reserved for it, at the last cells.
     void append_home(std::size_t m, std::vector<std::uint32_t>& home) {
         if (own_home_.size() < m) own_home_.resize(m);
         std::uint32_t* out = own_home_.data();
@@ -365,9 +366,9 @@ private:
 
 #if SMB_SWEEP_AVX2
     template <class Report>
-    [[gnu::target("avx2")]] void sweep_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
-                                            std::vector<std::uint32_t>& home) const {
-        sweep_in_lanes<8>(m, boxes, report, home);
+    [[gnu::target("avx2")]] void sweep_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes,
+                                            Report& report) const {
+        sweep_in_lanes<8>(m, boxes, report);
     }
     [[gnu::target("avx2,popcnt")]] std::size_t pair_rows_avx2(std::size_t m) {
         return pair_rows_in_lanes<8>(m);
@@ -398,20 +399,25 @@ private:
         return lane_bits<Lanes>(hit);
     }
 
+    /// The corners of row i's box, tested against every group of candidates of its row.
+    [[gnu::always_inline]] inline void row_corners(std::size_t i, std::array<float, Dim>& low,
+                                                   std::array<float, Dim>& high) const noexcept {
+        for (int k = 0; k < Dim; ++k) {
+            low[k] = columns_.min[k][i];
+            high[k] = columns_.max[k][i];
+        }
+    }
+
     template <std::size_t Lanes, class Report>
     [[gnu::always_inline]] inline void sweep_in_lanes(std::size_t m, std::span<const Box<Real, Dim>> boxes,
-                                                      Report& report, std::vector<std::uint32_t>& home) const {
+                                                      Report& report) const {
         const std::uint32_t* key = columns_.key.data();
         const Mask* inside = columns_.inside.data();
         const std::uint32_t* position = columns_.position.data();
         for (std::size_t i = 0; i < m; ++i) {
-            if (inside[i] == static_cast<Mask>(kAllInside)) home.push_back(position[i]);
             const std::uint32_t stop = monotone_key(columns_.max[0][i]);
             std::array<float, Dim> low{}, high{};  // low[0] unused, see sweep()
-            for (int k = 0; k < Dim; ++k) {
-                low[k] = columns_.min[k][i];
-                high[k] = columns_.max[k][i];
-            }
+            row_corners(i, low, high);
             for (std::size_t j = i + 1; key[j] <= stop; j += Lanes) {
                 unsigned bits = lanes_hit<Lanes, true>(j, inside[i], low, high);
                 while (bits != 0) {
@@ -433,10 +439,7 @@ private:
         std::uint32_t* out = hits_.data();
         for (std::size_t i = 0; i < m; ++i) {
             std::array<float, Dim> low{}, high{};
-            for (int k = 0; k < Dim; ++k) {
-                low[k] = columns_.min[k][i];
-                high[k] = columns_.max[k][i];
-            }
+            row_corners(i, low, high);
             const Mask own = columns_.inside[i];
             MaskLanes pair = lane + static_cast<Mask>((i << 16) | (i + 1));
             for (std::size_t j = i + 1; j < m; j += Lanes) {

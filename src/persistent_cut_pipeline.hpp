@@ -91,8 +91,7 @@ public:
     void set_origin(const std::array<Input, Dim>& origin) {
         origin_ = origin;
         cuts_.forget();
-        cold_ = true;
-        moved_far_ = false;
+        order_state_ = OrderState::fresh;
     }
 
     /// Calls visit(slot) once for every box of the last detection whose held box overlaps `query`
@@ -244,8 +243,11 @@ private:
     std::vector<std::uint8_t> oversized_;   // per position; written through atomic_ref
     std::vector<Position> oversized_list_;
     int threads_ = 1;
-    bool cold_ = true;                       // the order does not follow the cells (yet)
-    bool moved_far_ = false;                 // ... because most boxes moved far in the last one
+    /// What order_ follows: no cells at all (the first detection, a new origin), last step's
+    /// cells, or last step's cells after most boxes moved far from them. Either way but the
+    /// second, the order is cold: each cell's boxes lie scattered over the ordered copy.
+    enum class OrderState { fresh, follows_cells, moved_far };
+    OrderState order_state_ = OrderState::fresh;
     // Per level: locate without the hint, which missed for more than a quarter of the entries
     // in the last detection (boxes that move across cells every step, as at Λ = 0.1).
     std::array<bool, Dim> locate_without_hint_{};
@@ -289,9 +291,8 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     // step) scatters each cell's boxes over the ordered array. The check then reads them out of
     // order, prefetched; renumbering them in cell order first (a second copy of every box) cost
     // more than it saved once cells were checked by testing every pair (docs/performance.md).
-    // A fresh order says nothing of the boxes' motion: it follows no cells at all.
-    const bool fresh = cold_ && !moved_far_;
-    const bool cold = cold_ || cuts_.segments() != segments_before;
+    const bool fresh = order_state_ == OrderState::fresh;
+    const bool cold = order_state_ != OrderState::follows_cells || cuts_.segments() != segments_before;
     // In a cold order the previous entry says nothing of the next one's segment.
     if (cold) locate_without_hint_.fill(true);
 
@@ -324,9 +325,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     }
     order_.swap(next_order_);
     // Left in cell order, the next detection is warm unless most boxes moved far; after a fresh
-    // order, `far` measured the distance from a random order, not a motion.
-    moved_far_ = !fresh && cuts_.segments() == segments_before && 2 * far > n;
-    cold_ = moved_far_;
+    // order (or new cut counts), `far` measured the distance from other cells, not a motion.
+    const bool moved_far = !fresh && cuts_.segments() == segments_before && 2 * far > n;
+    order_state_ = moved_far ? OrderState::moved_far : OrderState::follows_cells;
 }
 
 /// Copies the boxes in order_'s order and regroups them level by level; returns the seconds
