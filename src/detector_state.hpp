@@ -73,6 +73,7 @@ public:
         } else if (!detected_with_skin(boxes, bounds, output, stats)) {
             if (uses_rounded()) {
                 rounded_.forget_slots_from(boxes.size());
+                rounded_.set_scene_bounds(bounds.lo, bounds.hi);
                 rounded_.detect(boxes, {}, settings_, output, stats);
                 if constexpr (kMayRound) retested_ = rounded_.retested();
             } else {

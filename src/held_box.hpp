@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <concepts>
 #include <cstdint>
 #include <limits>
@@ -37,6 +38,34 @@ template <std::floating_point Input, int Dim>
         held.max[k] = clamped_float(box.max[k] - origin[k]);
     }
     return held;
+}
+
+/// `value` rounded down (or up) to a float, clamped to the finite floats.
+[[nodiscard]] inline float float_below(double value) noexcept {
+    constexpr double top = std::numeric_limits<float>::max();
+    const double clamped = std::clamp(value, -top, top);
+    auto rounded = static_cast<float>(clamped);
+    if (static_cast<double>(rounded) > clamped) rounded = std::nextafter(rounded, -std::numeric_limits<float>::max());
+    return rounded;
+}
+[[nodiscard]] inline float float_above(double value) noexcept { return -float_below(-value); }
+
+/// The least float difference of two held coordinates that proves the order of the input
+/// coordinates they hold, for a scene within [lo, hi] held from `origin`. A held coordinate h
+/// of shifted coordinate v = fl(x - origin), |v| <= M, is within ulp(M) / 2 <= 2^-24 M (plus
+/// half the smallest subnormal) of v. Where the float difference of two held coordinates is at
+/// least M 2^-21 (plus 2^-140), their exact difference exceeds both errors together, so the
+/// shifted coordinates are in the same order, and the inputs too (the shift is monotone): held
+/// boxes that overlap by that margin on every axis hold input boxes that overlap.
+template <std::floating_point Input, int Dim>
+[[nodiscard]] float held_sure_margin(const std::array<Input, Dim>& origin, const std::array<Input, Dim>& lo,
+                                     const std::array<Input, Dim>& hi) noexcept {
+    double largest = 0;
+    for (int k = 0; k < Dim; ++k) {
+        largest = std::max(largest, std::abs(static_cast<double>(lo[k] - origin[k])));
+        largest = std::max(largest, std::abs(static_cast<double>(hi[k] - origin[k])));
+    }
+    return float_above(std::ldexp(largest, -21) + std::ldexp(1.0, -140));
 }
 
 /// A key per float that grows by one from each float to the next (and from -0 to +0).

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -92,6 +93,12 @@ public:
         origin_ = origin;
         cuts_.forget();
         order_state_ = OrderState::fresh;
+    }
+
+    /// The bounds of the boxes the next detection gets (rounded input only): held boxes that
+    /// overlap by held_sure_margin() on every axis then need no second test on the input.
+    void set_scene_bounds(const std::array<Input, Dim>& lo, const std::array<Input, Dim>& hi) {
+        if constexpr (kRounded) sure_margin_ = held_sure_margin<Input, Dim>(origin_, lo, hi);
     }
 
     /// Calls visit(slot) once for every box of the last detection whose held box overlaps `query`
@@ -201,16 +208,18 @@ private:
     CellFloor<Real, Dim> floor_of_cell(std::size_t cell) const;
     void check_invariants(std::span<const Box<Real, Dim>> boxes) const;
 
-    /// Held boxes at positions a and b overlap: true when their input boxes do too.
-    [[nodiscard]] bool confirmed(Position a, Position b) {
+    /// Held boxes at positions a and b overlap: true when their input boxes do too. `sure`:
+    /// the cell check found them overlapping by the sure margin (set_scene_bounds()).
+    [[nodiscard]] bool confirmed(Position a, Position b, bool sure = false) {
         if constexpr (kRounded) {
-            if (surely_overlap(ordered_[a], ordered_[b])) return true;
+            if (sure || surely_overlap(ordered_[a], ordered_[b])) return true;
             // Counted per thread would be exact too; a relaxed atomic is simpler and rare.
             std::atomic_ref<std::size_t>(retested_).fetch_add(1, std::memory_order_relaxed);
             return overlaps(input_[id_at(a)], input_[id_at(b)]);
         } else {
             (void)a;
             (void)b;
+            (void)sure;
             return true;
         }
     }
@@ -221,6 +230,7 @@ private:
 
     std::span<const Box<Input, Dim>> input_;  // the boxes of the detection under way
     std::array<Input, Dim> origin_{};
+    float sure_margin_ = std::numeric_limits<float>::infinity();  // infinity: proves nothing
     std::size_t retested_ = 0;
     std::vector<Slot> order_;       // every slot once: last step's cells, x-sorted within swept ones
     std::vector<Position> next_order_;   // positions of the home boxes, cell by cell
@@ -583,7 +593,9 @@ double PersistentCutPipeline<Real, Dim, Input>::regroup_first_level(std::size_t 
 
 /// Levels 1 and deeper: locate and count group by group (cutting again a group that left its
 /// band), the groups shared among the threads; then register every box that is not oversized
-/// in each segment it touches, by a stable counting sort. Returns the seconds spent cutting.
+/// in each segment it touches, by a stable counting sort. Returns the seconds spent cutting:
+/// the threads' cutting seconds over the number of threads, a share of the level's wall time
+/// (their sum, on several threads, could exceed it).
 template <std::floating_point Real, int Dim, std::floating_point Input>
 double PersistentCutPipeline<Real, Dim, Input>::regroup_level(int level, std::span<const Position> in,
                                                        std::span<const std::uint32_t> in_begin,
@@ -670,7 +682,7 @@ double PersistentCutPipeline<Real, Dim, Input>::regroup_level(int level, std::sp
             if (hi != lo) target[cursor[hi]++] = in[i];
         }
     }
-    return cutting;
+    return cutting / threads_;
 }
 
 template <std::floating_point Real, int Dim, std::floating_point Input>
@@ -694,6 +706,7 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::check_cells(std::span<const
                                                           Report& report) {
     next_order_.clear();
     reserve_with_slack(next_order_, boxes.size());
+    for (WorkerScratch& worker : workers_) worker.sweep.set_sure_margin(sure_margin_);
     const std::size_t moves = in_ordered_rounds(
         cuts_.groups(Dim - 1), report, next_order_,
         [&](std::size_t column, auto& collect, std::vector<Position>& home, const bool* give_up) {
@@ -717,8 +730,8 @@ template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Report, class Work>
 std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size_t count, Report& report,
                                                                 std::vector<Position>& home, Work&& work) {
-    auto report_ids = [&](Position a, Position b) {
-        if (confirmed(a, b)) report(id_at(a), id_at(b));
+    auto report_ids = [&](Position a, Position b, bool sure = false) {
+        if (confirmed(a, b, sure)) report(id_at(a), id_at(b));
     };
     std::size_t moves = 0;
     if (threads_ == 1) {
@@ -735,12 +748,12 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size
             block.moves = 0;
             // The pairs are written by index into an array grown by doubling, not push_back:
             // one store a pair, where push_back was a call out of line (as in PairOutput).
-            auto collect = [&block, this](Position x, Position y) {
+            auto collect = [&block, this](Position x, Position y, bool sure = false) {
                 if (block.filled == kBlockPairCap) {
                     block.overflowed = true;
                     return;
                 }
-                if (!confirmed(x, y)) return;
+                if (!confirmed(x, y, sure)) return;
                 if (block.filled == block.pairs.size())
                     block.pairs.resize(std::min(kBlockPairCap, std::max<std::size_t>(1024, 2 * block.filled)));
                 block.pairs[block.filled++] = ordered_pair(id_at(x), id_at(y));

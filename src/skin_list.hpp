@@ -50,16 +50,6 @@
 
 namespace smb::detail {
 
-/// `value` rounded down (or up) to a float, clamped to the finite floats: the fat box's ends,
-/// so that it always contains the held box it was grown from.
-[[nodiscard]] inline float float_below(double value) noexcept {
-    constexpr double top = std::numeric_limits<float>::max();
-    const double clamped = std::clamp(value, -top, top);
-    auto rounded = static_cast<float>(clamped);
-    if (static_cast<double>(rounded) > clamped) rounded = std::nextafter(rounded, -std::numeric_limits<float>::max());
-    return rounded;
-}
-[[nodiscard]] inline float float_above(double value) noexcept { return -float_below(-value); }
 
 template <std::floating_point Input, int Dim>
 class SkinList {
@@ -81,7 +71,7 @@ public:
 #ifdef _OPENMP
         threads_ = std::max(1, settings.threads == 0 ? omp_get_max_threads() : static_cast<int>(settings.threads));
 #endif
-        sure_margin_ = kExact ? 0.0F : sure_margin(origin, scene_lo, scene_hi);
+        sure_margin_ = kExact ? 0.0F : held_sure_margin<Input, Dim>(origin, scene_lo, scene_hi);
         retested_ = 0;
         refreshed_ = 0;
         rebuilt_ = false;
@@ -172,22 +162,6 @@ private:
     static constexpr std::uint8_t kDone = 8;   // fresh, and its new candidates are found already
 
     static constexpr bool kExact = std::same_as<Input, float>;  // held boxes are the input's own
-
-    /// A held coordinate h of shifted coordinate v = fl(x - origin), |v| <= M, is within
-    /// ulp(M) / 2 <= 2^-24 M (plus half the smallest subnormal) of v. Where the float difference
-    /// of two held coordinates is at least M 2^-21 (plus 2^-140), their exact difference exceeds
-    /// both errors together, so the shifted coordinates are in the same order, and the inputs
-    /// too (the shift is monotone): held boxes that overlap by that margin hold input boxes that
-    /// overlap.
-    [[nodiscard]] static float sure_margin(const std::array<Input, Dim>& origin, const std::array<Input, Dim>& lo,
-                                           const std::array<Input, Dim>& hi) noexcept {
-        double largest = 0;
-        for (int k = 0; k < Dim; ++k) {
-            largest = std::max(largest, std::abs(static_cast<double>(lo[k] - origin[k])));
-            largest = std::max(largest, std::abs(static_cast<double>(hi[k] - origin[k])));
-        }
-        return float_above(std::ldexp(largest, -21) + std::ldexp(1.0, -140));
-    }
 
     /// A life: the detections the candidates served between two rebuilds. Two short ones
     /// running, and the next detect() steps aside (after this one has reported its pairs).

@@ -243,6 +243,29 @@ TYPED_TEST(DetectorTest, AThrowingSinkLeavesItValid) {
     }
 }
 
+// The first detection cuts every group, the threads side by side: its phases must still be
+// shares of the call's wall time (their seconds of cutting, summed, once came out above it).
+TEST(DetectorStats, PhasesAreSharesOfTheCallOnSeveralThreads) {
+    Random random(5);
+    std::vector<Box3d> boxes;
+    for (int i = 0; i < 100000; ++i) {
+        const double x = uniform(random, 0, 100), y = uniform(random, 0, 100), z = uniform(random, 0, 100);
+        boxes.push_back(Box3d{{x, y, z}, {x + 1, y + 1, z + 1}});
+    }
+    for (const std::size_t threads : {1U, 2U, 4U}) {
+        WorldSettings settings;
+        settings.threads = threads;
+        Detector3d detector(settings);
+        std::vector<Pair> pairs;
+        const DetectStats first = detector.detect(boxes, pairs);
+        EXPECT_GE(first.sort_seconds, 0.0);
+        EXPECT_GE(first.cut_regroup_seconds, 0.0) << threads << " thread(s)";
+        EXPECT_GE(first.check_seconds, 0.0);
+        EXPECT_LE(first.sort_seconds + first.cut_regroup_seconds + first.check_seconds, first.total_seconds)
+            << threads << " thread(s)";
+    }
+}
+
 TEST(DetectorSettings, RefusesThePaperPipelineAndBadSettings) {
     WorldSettings paper;
     paper.pipeline = Pipeline::paper_lists;
@@ -287,6 +310,37 @@ TEST(DetectorPrecision, SettlesOnTheDoublesWhatTheFloatsCannot) {
     EXPECT_GT(detector.last_retested_pairs(), 0U);
     sort_pairs(pairs);
     EXPECT_EQ(pairs, brute_force(boxes));
+}
+
+// The same pairs spread over a lattice, so that the cells stay small and are checked pair by
+// pair, where the floats' overlaps by a margin are reported without a second test: a pair
+// within the floats' resolution must still reach the doubles, on one thread and on two.
+TEST(DetectorPrecision, SettlesOnTheDoublesWhatTheFloatsCannotInSmallCells) {
+    const double gap = 1e-12;
+    std::vector<Box3d> boxes;
+    for (int i = 0; i < 10; ++i) {
+        for (int j = 0; j < 10; ++j) {
+            for (int l = 0; l < 10; ++l) {
+                const double x = 3.0 * i, y = 3.0 * j, z = 3.0 * l;
+                boxes.push_back(Box3d{{x, y, z}, {x + 1, y + 1, z + 1}});
+                boxes.push_back(Box3d{{x + 1 + gap, y, z}, {x + 2, y + 1, z + 1}});  // apart by 1e-12
+                boxes.push_back(Box3d{{x, y + 1, z}, {x + 1, y + 2, z + 1}});        // touching
+                boxes.push_back(Box3d{{x + 0.5, y + 0.5, z + 1 - gap}, {x + 1.5, y + 1.5, z + 2}});  // overlap 1e-12
+            }
+        }
+    }
+    const std::vector<Pair> expected = brute_force(boxes);
+    for (const std::size_t threads : {1U, 2U}) {
+        WorldSettings settings;
+        settings.threads = threads;
+        Detector3d detector(settings);
+        std::vector<Pair> pairs;
+        detector.detect(boxes, pairs);
+        EXPECT_EQ(detector.last_precision(), HeldPrecision::floats);
+        EXPECT_GT(detector.last_retested_pairs(), 0U);
+        sort_pairs(pairs);
+        EXPECT_EQ(pairs, expected) << threads << " thread(s)";
+    }
 }
 
 TEST(DetectorPrecision, HoldsDoublesWhereFloatsWouldNotResolveTheScene) {

@@ -22,7 +22,8 @@ struct DetectStats {
 
     double update_seconds = 0;         ///< applying insertions and removals to the lists
     /// Sorting: DIS on every level (Pipeline::paper_lists); selecting the quantiles of the
-    /// groups cut again this step (Pipeline::persistent_cuts, zero in most steps).
+    /// groups cut again this step (Pipeline::persistent_cuts, zero in most steps). Where threads
+    /// cut groups side by side, their seconds of selection over the number of threads.
     double sort_seconds = 0;
     double cut_regroup_seconds = 0;    ///< axial cuts, singular regrouping, per-cell lists
     double check_seconds = 0;          ///< cell checks (with their sorts), oversized boxes, reporting
