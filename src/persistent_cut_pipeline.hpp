@@ -432,6 +432,16 @@ std::uint32_t PersistentCutPipeline<Real, Dim, Input>::locate_group(int level, s
     // One loop per way of locating the min, so that the hinted one is as tight as without the choice.
     auto locate_all = [&](auto hinted) {
         std::uint32_t lo = 0;
+        // The entries come in last step's segment order, so the mins fall in long runs of one
+        // segment: counted in registers, a run reaches `count` once, where counting each entry
+        // in memory chained every entry to the previous one's store.
+        std::uint32_t run = 0;
+        std::uint32_t run_mins = 0;
+        std::uint32_t run_crossings = 0;  // boxes of the run whose max lies in segment run + 1
+        auto end_run = [&]() {
+            count[run] += run_mins;
+            if (run_crossings != 0) count[run + 1] += run_crossings;
+        };
         [[maybe_unused]] constexpr std::size_t ahead = 16;
         for (std::size_t i = 0; i < entries.size(); ++i) {
             // In a cold order (the first detection) the entries of levels 1 and deeper point
@@ -465,9 +475,16 @@ std::uint32_t PersistentCutPipeline<Real, Dim, Input>::locate_group(int level, s
                 continue;
             }
             ranges[i] = lo | (hi << 16);
-            ++count[lo];
-            count[hi] += hi != lo ? 1U : 0U;
+            if (lo != run) {
+                end_run();
+                run = lo;
+                run_mins = 0;
+                run_crossings = 0;
+            }
+            ++run_mins;
+            run_crossings += hi - lo;
         }
+        end_run();
     };
     if (locate_without_hint_[level]) {
         locate_all(std::false_type{});
