@@ -443,20 +443,24 @@ std::uint32_t PersistentCutPipeline<Real, Dim, Input>::locate_group(int level, s
             if (run_crossings != 0) count[run + 1] += run_crossings;
         };
         [[maybe_unused]] constexpr std::size_t ahead = 16;
-        for (std::size_t i = 0; i < entries.size(); ++i) {
+        // A copy: held by reference, the entries' pointer was read again at every entry (the
+        // rare push_back below may, for all the compiler knows, change it).
+        const Entries listed = entries;
+        for (std::size_t i = 0; i < listed.size(); ++i) {
             // In a cold order (the first detection) the entries of levels 1 and deeper point
             // anywhere in the box array; level 0 reads it in order.
             if constexpr (!std::is_same_v<Entries, PositionRange>) {
-                if (i + ahead < entries.size()) __builtin_prefetch(&boxes[entries[i + ahead]]);
+                if (i + ahead < listed.size()) __builtin_prefetch(&boxes[listed[i + ahead]]);
             }
-            const Position position = entries[i];
-            // Only marks of earlier levels (published: 2) count here. A mark another thread makes
-            // on this level meanwhile (1) is ignored, so that counts, and the cuts they decide, do
-            // not depend on timing; the count is redone once the level's marks are all known.
-            if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) == kPublished) {
-                ranges[i] = kNoRange;
-                continue;
-            }
+            const Position position = listed[i];
+#ifdef SMB_VALIDATE
+            // The levels before registered no box they published as oversized (their count is
+            // redone without a box marked late), so no entry needs that test. A mark another
+            // thread makes on this level meanwhile (1) is not published yet.
+            SMB_ASSERT(std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) !=
+                           kPublished,
+                       "an entry was published as oversized on an earlier level");
+#endif
             const Box<Real, Dim>& box = boxes[position];
             if constexpr (decltype(hinted)::value) {
                 lo = segment_near(planes, box.min[axis], lo, misses);
