@@ -263,22 +263,26 @@ private:
     /// As registered, for the all-pairs test, which reads no keys.
     void lay_out(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
                  const CellFloor<Real, Dim>& floor) {
-        lay_out_columns(entries.size(), [&](std::size_t r) { return entries[r]; },
-                        [](std::size_t) { return std::uint32_t{0}; }, boxes, floor);
+        lay_out_columns(entries.size(), [&](std::size_t r) { return entries[r]; }, NoKeys{}, boxes, floor);
     }
+
+    struct NoKeys {};  // the all-pairs test reads no keys: none are written
 
     template <class PositionAt, class KeyAt>
     [[gnu::always_inline]] inline void lay_out_columns(std::size_t m, PositionAt position_at, KeyAt key_at,
                                                        std::span<const Box<Real, Dim>> boxes,
                                                        const CellFloor<Real, Dim>& floor) {
         const std::size_t padded = m + kPadding;
-        for (int k = 0; k < Dim; ++k) {
-            columns_.min[k].resize(padded);
-            columns_.max[k].resize(padded);
+        // The columns only grow (a resize of each, at every cell, was nine calls out of line).
+        if (columns_.position.size() < padded) {
+            for (int k = 0; k < Dim; ++k) {
+                columns_.min[k].resize(padded);
+                columns_.max[k].resize(padded);
+            }
+            columns_.inside.resize(padded);
+            columns_.key.resize(padded);
+            columns_.position.resize(padded);
         }
-        columns_.inside.resize(padded);
-        columns_.key.resize(padded);
-        columns_.position.resize(padded);
         for (std::size_t r = 0; r < m; ++r) {
             const std::uint32_t position = position_at(r);
             const Box<Real, Dim>& box = boxes[position];
@@ -289,7 +293,7 @@ private:
                 inside |= (box.min[k] >= floor[k] ? 1U : 0U) << k;
             }
             columns_.inside[r] = static_cast<Mask>(inside);
-            columns_.key[r] = key_at(r);
+            if constexpr (!std::is_same_v<KeyAt, NoKeys>) columns_.key[r] = key_at(r);
             columns_.position[r] = position;
         }
         for (std::size_t r = m; r < padded; ++r) {
