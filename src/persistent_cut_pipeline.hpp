@@ -432,9 +432,11 @@ std::uint32_t PersistentCutPipeline<Real, Dim, Input>::locate_group(int level, s
     // One loop per way of locating the min, so that the hinted one is as tight as without the choice.
     auto locate_all = [&](auto hinted) {
         std::uint32_t lo = 0;
-        // The entries come in last step's segment order, so the mins fall in long runs of one
-        // segment: counted in registers, a run reaches `count` once, where counting each entry
-        // in memory chained every entry to the previous one's store.
+        // Where the hint holds, the entries come in last step's segment order, so the mins fall
+        // in long runs of one segment: counted in registers, a run reaches `count` once, where
+        // counting each entry in memory chained every entry to the previous one's store. Without
+        // the hint (boxes that jump segments) runs are short, and the branch that ends one would
+        // guess wrong: each entry is counted in memory there.
         std::uint32_t run = 0;
         std::uint32_t run_mins = 0;
         std::uint32_t run_crossings = 0;  // boxes of the run whose max lies in segment run + 1
@@ -479,14 +481,19 @@ std::uint32_t PersistentCutPipeline<Real, Dim, Input>::locate_group(int level, s
                 continue;
             }
             ranges[i] = lo | (hi << 16);
-            if (lo != run) {
-                end_run();
-                run = lo;
-                run_mins = 0;
-                run_crossings = 0;
+            if constexpr (decltype(hinted)::value) {
+                if (lo != run) {
+                    end_run();
+                    run = lo;
+                    run_mins = 0;
+                    run_crossings = 0;
+                }
+                ++run_mins;
+                run_crossings += hi - lo;
+            } else {
+                ++count[lo];
+                count[hi] += hi != lo ? 1U : 0U;
             }
-            ++run_mins;
-            run_crossings += hi - lo;
         }
         end_run();
     };
