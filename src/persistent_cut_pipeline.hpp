@@ -658,11 +658,9 @@ double PersistentCutPipeline<Real, Dim, Input>::regroup_level(int level, std::sp
             const auto cut_start = Clock::now();
             // What the old planes called oversized is judged again against the new ones.
             worker.marks.resize(marked_before);
+            // No entry is published oversized (see locate_group()): every one takes part.
             cuts_.cut_group(level, g, entries.size(), [&](std::size_t i, Real& key) {
-                const Position position = entries[i];
-                if (std::atomic_ref<std::uint8_t>(oversized_[position]).load(std::memory_order_relaxed) == kPublished)
-                    return false;
-                key = boxes[position].min[axis];
+                key = boxes[entries[i]].min[axis];
                 return true;
             }, worker.quantiles);
             const std::uint32_t balanced = locate_group(level, g, entries, boxes, ranges, segment_count, worker);

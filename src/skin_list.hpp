@@ -50,7 +50,6 @@
 
 namespace smb::detail {
 
-
 template <std::floating_point Input, int Dim>
 class SkinList {
 public:
