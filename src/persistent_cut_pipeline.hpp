@@ -253,13 +253,13 @@ private:
     std::vector<std::uint8_t> oversized_;   // per position; written through atomic_ref
     std::vector<Position> oversized_list_;
     int threads_ = 1;
-    /// What order_ follows: no cells at all (the first detection, a new origin), last step's
-    /// cells, or last step's cells after most boxes moved far from them. Either way but the
-    /// second, the order is cold: each cell's boxes lie scattered over the ordered copy.
-    enum class OrderState { fresh, follows_cells, moved_far };
+    /// What order_ follows: no cells at all (the first detection, a new origin; the order is
+    /// cold, each cell's boxes scattered over the ordered copy), or last step's cells.
+    enum class OrderState { fresh, follows_cells };
     OrderState order_state_ = OrderState::fresh;
     // Per level: locate without the hint, which missed for more than a quarter of the entries
-    // in the last detection (boxes that move across cells every step, as at Λ = 0.1).
+    // in the last detection (boxes that move across cells every step, as at Λ = 0.1, or that
+    // all jumped at once; judge_hints()).
     std::array<bool, Dim> locate_without_hint_{};
     std::vector<WorkerScratch> workers_;     // one per thread
     std::vector<BlockOutput> blocks_;         // one per block of a round of cell checks
@@ -297,13 +297,13 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     const std::uint32_t segments_before = cuts_.segments();
     plan_segments(n, settings);
     plan_threads(settings);
-    // A cold order (first detection, new cut counts, or boxes that jumped far since the last
-    // step) scatters each cell's boxes over the ordered array. The check then reads them out of
-    // order, prefetched; renumbering them in cell order first (a second copy of every box) cost
-    // more than it saved once cells were checked by testing every pair (docs/performance.md).
-    const bool fresh = order_state_ == OrderState::fresh;
-    const bool cold = order_state_ != OrderState::follows_cells || cuts_.segments() != segments_before;
-    // In a cold order the previous entry says nothing of the next one's segment.
+    // A cold order (first detection, new cut counts) scatters each cell's boxes over the
+    // ordered array. The check then reads them out of order, prefetched; renumbering them in
+    // cell order first (a second copy of every box) cost more than it saved once cells were
+    // checked by testing every pair (docs/performance.md).
+    const bool cold = order_state_ == OrderState::fresh || cuts_.segments() != segments_before;
+    // In a cold order the previous entry says nothing of the next one's segment. Boxes that
+    // jumped far since the last step are left to judge_hints(), which measured the misses.
     if (cold) locate_without_hint_.fill(true);
 
     const auto start = Clock::now();
@@ -322,22 +322,18 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
 #ifdef SMB_VALIDATE
     check_invariants(boxes);
 #endif
-    // Boxes whose place in the order moved by more than about a column's share left their
-    // cells' neighbourhood; when most did, the next detection starts cold.
+    // The check wrote positions in the ordered copy; the next order holds their slots. There
+    // used to be a second judgement here: when most boxes' places in the order had moved by more
+    // than a column's share, the next detection located without the hint. The boxes a step
+    // adds shift every later place by up to their number, about Λ N, while a column holds
+    // about N^(1/3) boxes: at 10M boxes and Λ = 1e-3 every step that added boxes judged the
+    // order cold and located by binary search, and the levels took 2.5 times as long in those
+    // steps (docs/performance.md). judge_hints() measures what matters, the misses.
     const auto count = static_cast<std::ptrdiff_t>(next_order_.size());
-    const auto window = static_cast<std::ptrdiff_t>(n / std::max<std::size_t>(1, cuts_.groups(Dim - 1))) + 64;
-    std::size_t far = 0;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : far)
-    for (std::ptrdiff_t i = 0; i < count; ++i) {
-        const auto from = static_cast<std::ptrdiff_t>(next_order_[i]);
-        far += (from - i > window || i - from > window) ? 1U : 0U;
-        next_order_[i] = order_[next_order_[i]];
-    }
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::ptrdiff_t i = 0; i < count; ++i) next_order_[i] = order_[next_order_[i]];
     order_.swap(next_order_);
-    // Left in cell order, the next detection is warm unless most boxes moved far; after a fresh
-    // order (or new cut counts), `far` measured the distance from other cells, not a motion.
-    const bool moved_far = !fresh && cuts_.segments() == segments_before && 2 * far > n;
-    order_state_ = moved_far ? OrderState::moved_far : OrderState::follows_cells;
+    order_state_ = OrderState::follows_cells;
 }
 
 /// Copies the boxes in order_'s order and regroups them level by level; returns the seconds
