@@ -1,7 +1,6 @@
 #pragma once
-// What a Detector holds: its settings, and the persistent-cut pipeline over the caller's array,
-// holding floats (double input shifted and rounded, held_box.hpp) or, where floats would not resolve the
-// scene, a copy of the doubles (scene_bounds.hpp decides).
+// What a Detector holds: its settings, the persistent-cut pipeline over the caller's array,
+// holding floats or a copy of the doubles (held_cut_pipeline.hpp), and the skin list.
 
 #include <chrono>
 #include <cstddef>
@@ -9,8 +8,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "held_cut_pipeline.hpp"
 #include "pair_output.hpp"
-#include "persistent_cut_pipeline.hpp"
 #include "scene_bounds.hpp"
 #include "settings_check.hpp"
 #include "skin_list.hpp"
@@ -33,18 +32,15 @@ public:
 
     const WorldSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
-    HeldPrecision last_precision() const noexcept { return precision_; }
+    HeldPrecision last_precision() const noexcept { return pipeline_.precision(); }
     std::size_t last_retested_pairs() const noexcept { return retested_; }
 
     void clear() {
-        exact_ = ExactPipeline();
-        rounded_ = RoundedPipeline();
+        pipeline_.clear();
         skin_.clear();
         skin_pause_ = 0;
         retested_ = 0;
         std::vector<Pair>().swap(chunk_);
-        judged_ = false;
-        precision_ = HeldPrecision::none;
         stats_ = {};
     }
 
@@ -56,30 +52,19 @@ public:
         SceneBounds<Real, Dim> bounds;
         if (!boxes.empty()) {
             bounds = checked_bounds(boxes);  // throws before any change
-            if constexpr (kMayRound) choose_precision(boxes, bounds);
-            else precision_ = HeldPrecision::floats;
+            pipeline_.judge(boxes, bounds);
         }
         stats.update_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
         retested_ = 0;
         if (boxes.empty()) {
-            exact_.forget_slots_from(0);
-            exact_.detect(boxes, {}, settings_, output, stats);
-            rounded_ = RoundedPipeline();
+            pipeline_.detect_nothing(settings_, output, stats);
             skin_.clear();
-            precision_ = HeldPrecision::none;
-            judged_ = false;
         } else if (!detected_with_skin(boxes, bounds, output, stats)) {
-            if (uses_rounded()) {
-                rounded_.forget_slots_from(boxes.size());
-                rounded_.set_scene_bounds(bounds.lo, bounds.hi);
-                rounded_.detect(boxes, {}, settings_, output, stats);
-                if constexpr (kMayRound) retested_ = rounded_.retested();
-            } else {
-                exact_.forget_slots_from(boxes.size());
-                exact_.detect(boxes, {}, settings_, output, stats);
-            }
+            pipeline_.forget_slots_from(boxes.size());
+            pipeline_.detect(boxes, {}, bounds, settings_, output, stats);
+            retested_ = pipeline_.retested();
         }
         output.flush();
         stats.bytes_held = bytes_held();
@@ -89,22 +74,17 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return sizeof(*this) + exact_.bytes_held() + rounded_.bytes_held() + skin_.bytes_held() +
+        return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() +
                chunk_.capacity() * sizeof(Pair);
     }
 
 private:
-    /// Double input may be held as floats; float input is held as it is.
-    static constexpr bool kMayRound = !std::is_same_v<Real, float>;
-    using ExactPipeline = PersistentCutPipeline<Real, Dim, Real>;
-    using RoundedPipeline = std::conditional_t<kMayRound, PersistentCutPipeline<float, Dim, Real>, ExactPipeline>;
-
     /// With a skin, on floats (the input's own, or double input that floats resolve): the skin
     /// list detects, and the pipelines give their memory back when it (re)builds. When it steps
     /// aside (SkinList::detect()), the pipelines detect for kSkinPause detections.
     bool detected_with_skin(std::span<const Box<Real, Dim>> boxes, const SceneBounds<Real, Dim>& bounds,
                             PairOutput& output, DetectStats& stats) {
-        if (settings_.skin == 0 || precision_ != HeldPrecision::floats) {
+        if (settings_.skin == 0 || pipeline_.precision() != HeldPrecision::floats) {
             skin_.clear();
             return false;
         }
@@ -112,66 +92,23 @@ private:
             --skin_pause_;
             return false;
         }
-        std::array<Real, Dim> origin{};
-        if constexpr (kMayRound) origin = judgement_.origin;
-        if (!skin_.detect(boxes, origin, bounds.lo, bounds.hi, settings_.skin, settings_, output, stats)) {
+        if (!skin_.detect(boxes, pipeline_.origin(), bounds.lo, bounds.hi, settings_.skin, settings_, output, stats)) {
             skin_pause_ = kSkinPause;
             return false;
         }
         retested_ = skin_.retested();
-        if (stats.skin_rebuilt) {  // a (re)build is the first skin detection after the pipelines' ones
-            exact_ = ExactPipeline();
-            rounded_ = RoundedPipeline();
-            if constexpr (kMayRound) rounded_.set_origin(judgement_.origin);
-        }
+        // A (re)build is the first skin detection after the pipeline's ones.
+        if (stats.skin_rebuilt) pipeline_.release();
         return true;
     }
 
-    [[nodiscard]] bool uses_rounded() const noexcept {
-        return kMayRound && precision_ == HeldPrecision::floats;
-    }
-
-    /// Judges the scene again when it left the region of the last judgement, when the number of
-    /// boxes moved by more than a quarter (the cut counts change then anyway), and every
-    /// kJudgeEvery detections (a scene of points may have grown into boxes). A new origin forgets
-    /// the cuts, so a scene still held as floats and still inside its region keeps its origin;
-    /// switching gives the other pipeline's memory back.
-    void choose_precision(std::span<const Box<Real, Dim>> boxes, const SceneBounds<Real, Dim>& bounds) {
-        const std::size_t n = boxes.size();
-        const bool inside = judged_ && bounds.within(judgement_.region);
-        const bool stale = !inside || 4 * n > 5 * judged_boxes_ || 5 * n < 4 * judged_boxes_ ||
-                           ++since_judged_ >= kJudgeEvery;
-        if (!stale) return;
-        FloatResolution<Real, Dim> judged = judge_float_resolution(boxes, bounds);
-        judged_ = true;
-        judged_boxes_ = n;
-        since_judged_ = 0;
-        if (judged.floats && precision_ == HeldPrecision::floats && inside) return;
-        judgement_ = judged;
-        if (judged.floats) {
-            if constexpr (kMayRound) rounded_.set_origin(judged.origin);
-            exact_ = ExactPipeline();
-            precision_ = HeldPrecision::floats;
-        } else {
-            rounded_ = RoundedPipeline();
-            precision_ = HeldPrecision::exact;
-        }
-    }
-
-    static constexpr std::size_t kJudgeEvery = 64;
     static constexpr std::size_t kSkinPause = 64;
 
     WorldSettings settings_;
-    ExactPipeline exact_;
-    RoundedPipeline rounded_;
+    HeldCutPipeline<Real, Dim> pipeline_;
     SkinList<Real, Dim> skin_;
     std::size_t skin_pause_ = 0;
     std::size_t retested_ = 0;
-    FloatResolution<Real, Dim> judgement_;
-    bool judged_ = false;
-    std::size_t judged_boxes_ = 0;
-    std::size_t since_judged_ = 0;
-    HeldPrecision precision_ = HeldPrecision::none;
     DetectStats stats_;
     std::vector<Pair> chunk_;
 };

@@ -215,7 +215,8 @@ private:
             if (sure || surely_overlap(ordered_[a], ordered_[b])) return true;
             // Counted per thread would be exact too; a relaxed atomic is simpler and rare.
             std::atomic_ref<std::size_t>(retested_).fetch_add(1, std::memory_order_relaxed);
-            return overlaps(input_[id_at(a)], input_[id_at(b)]);
+            // The input is indexed by slot, which order_ still gives while a detection runs.
+            return overlaps(input_[order_[a]], input_[order_[b]]);
         } else {
             (void)a;
             (void)b;
@@ -258,8 +259,8 @@ private:
     enum class OrderState { fresh, follows_cells };
     OrderState order_state_ = OrderState::fresh;
     // Per level: locate without the hint, which missed for more than a quarter of the entries
-    // in the last detection (boxes that move across cells every step, as at Λ = 0.1, or that
-    // all jumped at once; judge_hints()).
+    // (half, beyond 64 planes) in the last detection: boxes that move across cells every step,
+    // as at Λ = 0.1, or that all jumped at once (judge_hints()).
     std::array<bool, Dim> locate_without_hint_{};
     std::vector<WorkerScratch> workers_;     // one per thread
     std::vector<BlockOutput> blocks_;         // one per block of a round of cell checks

@@ -109,6 +109,16 @@ const DetectStats& World<Real, Dim>::last_stats() const noexcept {
 }
 
 template <std::floating_point Real, int Dim>
+HeldPrecision World<Real, Dim>::last_precision() const noexcept {
+    return state_->last_precision();
+}
+
+template <std::floating_point Real, int Dim>
+std::size_t World<Real, Dim>::last_retested_pairs() const noexcept {
+    return state_->last_retested_pairs();
+}
+
+template <std::floating_point Real, int Dim>
 std::size_t World<Real, Dim>::bytes_held() const noexcept {
     return state_->bytes_held();
 }

@@ -1,22 +1,26 @@
 #pragma once
 // What a World holds: its boxes (box_store.hpp), its settings, and the pipeline that finds the
-// overlapping pairs, chosen by WorldSettings::pipeline. The pairs are handed to the caller's
-// sink in chunks from here, whichever pipeline found them.
+// overlapping pairs, chosen by WorldSettings::pipeline: the persistent cuts, holding floats of
+// double boxes where floats resolve the scene (held_cut_pipeline.hpp), or the paper's lists.
+// The pairs are handed to the caller's sink in chunks from here, whichever pipeline found them.
 
 #include <chrono>
 #include <algorithm>
 #include <cstddef>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "box_store.hpp"
 #include "pair_output.hpp"
 #include "settings_check.hpp"
+#include "held_cut_pipeline.hpp"
 #include "paper_pipeline.hpp"
-#include "persistent_cut_pipeline.hpp"
+#include "scene_bounds.hpp"
 #include "smb/errors.hpp"
+#include "smb/held_precision.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 #include "smb/world.hpp"
@@ -38,11 +42,19 @@ public:
     const BoxStore<Real, Dim>& store() const noexcept { return store_; }
     const WorldSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
+    HeldPrecision last_precision() const noexcept {
+        if (settings_.pipeline == Pipeline::persistent_cuts) return persistent_.precision();
+        if (stats_.boxes == 0) return HeldPrecision::none;
+        return std::is_same_v<Real, float> ? HeldPrecision::floats : HeldPrecision::exact;
+    }
+    std::size_t last_retested_pairs() const noexcept {
+        return settings_.pipeline == Pipeline::persistent_cuts ? persistent_.retested() : 0;
+    }
 
     /// Forgets every box and gives back every array, as a new world would have them.
     void clear() {
         store_ = BoxStore<Real, Dim>();
-        persistent_ = PersistentCutPipeline<Real, Dim>();
+        persistent_.clear();
         paper_ = PaperPipeline<Real, Dim>(&store_, &settings_);
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
@@ -64,8 +76,15 @@ public:
         if (settings_.pipeline == Pipeline::paper_lists) {
             auto report_slots = [&](Slot a, Slot b) { output(store_.id_at(a), store_.id_at(b)); };
             paper_.detect(report_slots, stats);
+        } else if (store_.slot_count() == 0) {
+            persistent_.detect_nothing(settings_, output, stats);
         } else {
-            persistent_.detect(store_, settings_, output, stats);
+            // The store holds valid boxes only: this pass finds the bounds and throws nothing.
+            // Float boxes are held as they are, and need no bounds.
+            SceneBounds<Real, Dim> bounds;
+            if constexpr (HeldCutPipeline<Real, Dim>::kMayRound) bounds = checked_bounds(store_.boxes());
+            persistent_.judge(store_.boxes(), bounds);
+            persistent_.detect(store_.boxes(), store_.ids(), bounds, settings_, output, stats);
         }
         output.flush();
         stats.bytes_held = bytes_held();
@@ -84,7 +103,7 @@ private:
     WorldSettings settings_;
     BoxStore<Real, Dim> store_;
     DetectStats stats_;
-    PersistentCutPipeline<Real, Dim> persistent_;
+    HeldCutPipeline<Real, Dim> persistent_;
     PaperPipeline<Real, Dim> paper_{&store_, &settings_};
     std::vector<Pair> chunk_;
 };

@@ -9,6 +9,7 @@
 
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
+#include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
@@ -19,13 +20,6 @@ namespace detail {
 template <std::floating_point Real, int Dim>
 class DetectorState;
 }  // namespace detail
-
-/// What a Detector held for its last detection.
-enum class HeldPrecision {
-    none,    ///< nothing detected yet (or no boxes)
-    floats,  ///< floats: the input's own (float input), or double input shifted and rounded
-    exact,   ///< a copy of the double input: floats would not resolve the scene (see Detector)
-};
 
 /// The SMB broad phase for simulations that keep their bodies' boxes in an array of their own:
 /// each detect() takes the whole array, box i being body i, and reports every pair of indices

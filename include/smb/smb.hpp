@@ -4,6 +4,7 @@
 #include "smb/box.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
+#include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"

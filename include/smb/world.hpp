@@ -10,6 +10,7 @@
 
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
+#include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
@@ -33,6 +34,14 @@ class WorldState;
 /// Errors: every mutating call validates all its input first; on bad input (a box with NaN,
 /// infinity or min > max; an unknown id; an id inserted twice) it throws a subclass of
 /// smb::Error and leaves the world exactly as it was.
+///
+/// Precision: with Pipeline::persistent_cuts, a world of double boxes holds floats for its
+/// passes, shifted to the middle of the scene and rounded to the nearest float, and tests again
+/// on the stored doubles every pair that the floats cannot settle (boxes within a few floats of
+/// touching), so the pairs are exact; floats halve the memory every pass reads. When floats
+/// would not resolve the scene (more than 1/8 of the boxes thinner than 2^-14 of the scene's
+/// extent on some axis, or coordinates beyond float range) it holds the doubles instead;
+/// last_precision() says which. The choice is made as Detector makes it.
 ///
 /// Determinism: the same sequence of calls gives the same pairs in the same order, whatever
 /// WorldSettings::threads. The order of pairs within one detection is otherwise unspecified;
@@ -98,6 +107,11 @@ public:
 
     /// Statistics of the last detect() call.
     [[nodiscard]] const DetectStats& last_stats() const noexcept;
+    /// What the last detection held: floats or the doubles themselves (see Precision above).
+    [[nodiscard]] HeldPrecision last_precision() const noexcept;
+    /// Pairs the held floats could not settle and that were tested again on the stored boxes,
+    /// in the last detection.
+    [[nodiscard]] std::size_t last_retested_pairs() const noexcept;
     /// Heap bytes held by the world now (its own accounting of its arrays).
     [[nodiscard]] std::size_t bytes_held() const noexcept;
 

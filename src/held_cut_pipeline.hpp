@@ -1,0 +1,150 @@
+#pragma once
+// The persistent-cut pipeline as a World or Detector of double boxes runs it: holding floats
+// (the boxes shifted to the middle of the scene and rounded, held_box.hpp) wherever floats
+// resolve the scene, and a copy of the doubles where they would not (scene_bounds.hpp judges).
+// Floats halve the bytes every pass moves and double the boxes a vector compares at once; the
+// pairs stay exact, since every pair the floats cannot settle is tested again on the input.
+// Float boxes are held as they are.
+
+#include <array>
+#include <cstddef>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "assert.hpp"
+#include "persistent_cut_pipeline.hpp"
+#include "scene_bounds.hpp"
+#include "smb/box.hpp"
+#include "smb/held_precision.hpp"
+#include "smb/settings.hpp"
+#include "smb/stats.hpp"
+
+namespace smb::detail {
+
+template <std::floating_point Real, int Dim>
+class HeldCutPipeline {
+public:
+    /// Double input may be held as floats; float input is held as it is.
+    static constexpr bool kMayRound = !std::is_same_v<Real, float>;
+
+    [[nodiscard]] HeldPrecision precision() const noexcept { return precision_; }
+    /// Where held floats start from (double input held as floats only).
+    [[nodiscard]] std::array<Real, Dim> origin() const noexcept {
+        if constexpr (kMayRound) return judgement_.origin;
+        else return {};
+    }
+    /// Pairs the held floats could not settle, tested again on the input, in the last detection.
+    [[nodiscard]] std::size_t retested() const noexcept { return retested_; }
+
+    /// Chooses what the next detection of `boxes` (not empty), whose bounds are `bounds`, holds.
+    /// Judges the scene again when it left the region of the last judgement, when the number of
+    /// boxes moved by more than a quarter (the cut counts change then anyway), and every
+    /// kJudgeEvery detections (a scene of points may have grown into boxes). A new origin forgets
+    /// the cuts, so a scene still held as floats and still inside its region keeps its origin;
+    /// switching gives the other pipeline's memory back.
+    void judge(std::span<const Box<Real, Dim>> boxes, const SceneBounds<Real, Dim>& bounds) {
+        if constexpr (!kMayRound) {
+            precision_ = HeldPrecision::floats;
+        } else {
+            const std::size_t n = boxes.size();
+            const bool inside = judged_ && bounds.within(judgement_.region);
+            const bool stale = !inside || 4 * n > 5 * judged_boxes_ || 5 * n < 4 * judged_boxes_ ||
+                               ++since_judged_ >= kJudgeEvery;
+            if (!stale) return;
+            FloatResolution<Real, Dim> judged = judge_float_resolution(boxes, bounds);
+            judged_ = true;
+            judged_boxes_ = n;
+            since_judged_ = 0;
+            if (judged.floats && precision_ == HeldPrecision::floats && inside) return;
+            judgement_ = judged;
+            if (judged.floats) {
+                rounded_.set_origin(judged.origin);
+                exact_ = ExactPipeline();
+                precision_ = HeldPrecision::floats;
+            } else {
+                rounded_ = RoundedPipeline();
+                precision_ = HeldPrecision::exact;
+            }
+        }
+    }
+
+    /// Reports every overlapping pair of `boxes` (box `slot` under ids[slot], or under `slot`
+    /// where `ids` is empty) as judge() chose to hold them; `bounds` as judge() had them.
+    template <class Report>
+    void detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> ids,
+                const SceneBounds<Real, Dim>& bounds, const WorldSettings& settings, Report& report,
+                DetectStats& stats) {
+        SMB_ASSERT(precision_ != HeldPrecision::none, "judge() chose what to hold");
+        retested_ = 0;
+        if (uses_rounded()) {
+            rounded_.set_scene_bounds(bounds.lo, bounds.hi);
+            rounded_.detect(boxes, ids, settings, report, stats);
+            if constexpr (kMayRound) retested_ = rounded_.retested();
+        } else {
+            exact_.detect(boxes, ids, settings, report, stats);
+        }
+    }
+
+    /// A detection of no boxes: forgets the cuts, the order and the judgement.
+    template <class Report>
+    void detect_nothing(const WorldSettings& settings, Report& report, DetectStats& stats) {
+        clear();
+        exact_.detect(std::span<const Box<Real, Dim>>{}, {}, settings, report, stats);
+    }
+
+    /// Boxes from slot `n` on are gone (a Detector's caller passed fewer than last time).
+    void forget_slots_from(std::size_t n) {
+        exact_.forget_slots_from(n);
+        rounded_.forget_slots_from(n);
+    }
+
+    /// Drops removed slots from the order and renumbers the others (BoxStore::compact()).
+    void fold_removals(std::span<const Slot> new_slot) {
+        exact_.fold_removals(new_slot);
+        rounded_.fold_removals(new_slot);
+    }
+
+    /// Gives the pipelines' memory back (their cuts and order too); keeps the judgement.
+    void release() {
+        exact_ = ExactPipeline();
+        rounded_ = RoundedPipeline();
+        if constexpr (kMayRound) {
+            if (precision_ == HeldPrecision::floats) rounded_.set_origin(judgement_.origin);
+        }
+    }
+
+    /// Forgets everything, the judgement included.
+    void clear() {
+        exact_ = ExactPipeline();
+        rounded_ = RoundedPipeline();
+        retested_ = 0;
+        judged_ = false;
+        judged_boxes_ = 0;
+        since_judged_ = 0;
+        precision_ = HeldPrecision::none;
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept { return exact_.bytes_held() + rounded_.bytes_held(); }
+
+private:
+    using ExactPipeline = PersistentCutPipeline<Real, Dim, Real>;
+    using RoundedPipeline = std::conditional_t<kMayRound, PersistentCutPipeline<float, Dim, Real>, ExactPipeline>;
+
+    [[nodiscard]] bool uses_rounded() const noexcept {
+        return kMayRound && precision_ == HeldPrecision::floats;
+    }
+
+    static constexpr std::size_t kJudgeEvery = 64;
+
+    ExactPipeline exact_;
+    RoundedPipeline rounded_;
+    std::size_t retested_ = 0;
+    FloatResolution<Real, Dim> judgement_;
+    bool judged_ = false;
+    std::size_t judged_boxes_ = 0;
+    std::size_t since_judged_ = 0;
+    HeldPrecision precision_ = HeldPrecision::none;
+};
+
+}  // namespace smb::detail
