@@ -309,6 +309,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
 
     const auto start = Clock::now();
     const double cutting = run_levels(store_boxes, store_ids);
+    // The misses of a cold order say nothing of the next detection, whose entries will come in
+    // this one's cells: it tries the hint, and judges again from its own misses.
+    if (cold) locate_without_hint_.fill(false);
     const std::span<const Box<Real, Dim>> boxes(ordered_);
     const double regrouping = std::chrono::duration<double>(Clock::now() - start).count();
     stats.sort_seconds = cutting;
