@@ -6,6 +6,7 @@
 // pairs stay exact, since every pair the floats cannot settle is tested again on the input.
 // Float boxes are held as they are.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <span>
@@ -15,6 +16,7 @@
 #include "assert.hpp"
 #include "persistent_cut_pipeline.hpp"
 #include "scene_bounds.hpp"
+#include "slot_renumbering.hpp"
 #include "smb/box.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/settings.hpp"
@@ -100,10 +102,13 @@ public:
     }
 
     /// Drops removed slots from the order and renumbers the others (BoxStore::compact()).
-    void fold_removals(std::span<const Slot> new_slot) {
-        exact_.fold_removals(new_slot);
-        rounded_.fold_removals(new_slot);
+    void fold_removals(const SlotRenumbering& renumbering) {
+        exact_.fold_removals(renumbering);
+        rounded_.fold_removals(renumbering);
     }
+
+    /// Slots the pipeline in use lists (the other lists none).
+    [[nodiscard]] std::size_t listed() const noexcept { return std::max(exact_.listed(), rounded_.listed()); }
 
     /// Gives the pipelines' memory back (their cuts and order too); keeps the judgement.
     void release() {

@@ -40,7 +40,10 @@ public:
 
     /// Renumbers every list after BoxStore::compact() dropped removed slots, keeping each
     /// list's order (the paper's remark 3 of Section 2.4: renumber, never rebuild).
-    void fold_removals(std::span<const Slot> new_slot);
+    void fold_removals(const SlotRenumbering& renumbering);
+
+    /// Slots [0, listed()) are in the lists; later ones arrived since the last detection.
+    [[nodiscard]] std::size_t listed() const noexcept { return listed_; }
 
     template <class Report>
     void detect(Report& report, DetectStats& stats);
@@ -167,9 +170,9 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
 }
 
 template <std::floating_point Real, int Dim>
-void PaperPipeline<Real, Dim>::fold_removals(std::span<const Slot> new_slot) {
+void PaperPipeline<Real, Dim>::fold_removals(const SlotRenumbering& renumbering) {
     std::size_t still_listed = 0;
-    for (std::size_t s = 0; s < listed_; ++s) still_listed += new_slot[s] != kNoSlot ? 1 : 0;
+    for (std::size_t s = 0; s < listed_; ++s) still_listed += renumbering(static_cast<Slot>(s)) != kNoSlot ? 1 : 0;
     for (int depth = 0; depth < Dim; ++depth) {
         Level& level = levels_[depth];
         const int shift = depth + 1;
@@ -181,7 +184,7 @@ void PaperPipeline<Real, Dim>::fold_removals(std::span<const Slot> new_slot) {
             level.section_begin[j] = static_cast<std::uint32_t>(write);
             for (std::uint32_t i = first; i < last; ++i) {
                 const Entry entry = level.list[i];
-                const Slot slot = new_slot[entry.item >> shift];
+                const Slot slot = renumbering(static_cast<Slot>(entry.item >> shift));
                 if (slot == kNoSlot) continue;
                 level.list[write++] = Entry{entry.key, (slot << shift) | (entry.item & low_bits)};
             }

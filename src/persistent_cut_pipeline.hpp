@@ -36,6 +36,7 @@
 #include "ordered_rounds.hpp"
 #include "pair_output.hpp"
 #include "prefetch.hpp"
+#include "slot_renumbering.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
@@ -50,15 +51,20 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim, std::floating_point Input = Real>
 class PersistentCutPipeline {
 public:
-    /// Drops removed slots from the order and renumbers the others (BoxStore::compact()).
-    void fold_removals(std::span<const Slot> new_slot) {
+    /// Drops removed slots from the order and renumbers the others (BoxStore::compact(), which
+    /// leaves the listed boxes in the first slots).
+    void fold_removals(const SlotRenumbering& renumbering) {
         std::size_t write = 0;
         for (const Slot slot : order_) {
-            if (slot < new_slot.size() && new_slot[slot] != kNoSlot) order_[write++] = new_slot[slot];
+            const Slot now = renumbering(slot);
+            if (now != kNoSlot) order_[write++] = now;
         }
         order_.resize(write);
         listed_ = write;
     }
+
+    /// Slots [0, listed()) are in the order; later ones arrived since the last detection.
+    [[nodiscard]] std::size_t listed() const noexcept { return listed_; }
 
     /// Forgets the slots from `n` on: a Detector's caller passed fewer boxes than last time.
     void forget_slots_from(std::size_t n) {

@@ -65,9 +65,10 @@ public:
         const auto start = Clock::now();
         DetectStats stats;
         if (store_.has_removals()) {
-            const std::vector<Slot> new_slot = store_.compact();
-            if (settings_.pipeline == Pipeline::paper_lists) paper_.fold_removals(new_slot);
-            else persistent_.fold_removals(new_slot);
+            const bool paper = settings_.pipeline == Pipeline::paper_lists;
+            const SlotRenumbering renumbering = store_.compact(paper ? paper_.listed() : persistent_.listed());
+            if (paper) paper_.fold_removals(renumbering);
+            else persistent_.fold_removals(renumbering);
         }
         stats.boxes = store_.slot_count();
         stats.update_seconds = std::chrono::duration<double>(Clock::now() - start).count();

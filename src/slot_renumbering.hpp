@@ -1,0 +1,45 @@
+#pragma once
+// How BoxStore::compact() renumbered the slots: every old slot's new slot, or kNoSlot for a
+// removed box. The compaction moves few boxes (box_store.hpp), so most slots keep their number;
+// the map says so with a bit per slot below the moved range and a table for the range itself,
+// instead of an array of every slot: a pipeline folds it into its lists in the lists' order,
+// which is random in slots, and at 10M boxes a 40 MB array read in that order missed the cache
+// and the TLB on nearly every entry.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "id_index.hpp"
+
+namespace smb::detail {
+
+class SlotRenumbering {
+public:
+    SlotRenumbering() = default;
+
+    /// Slots below `kept` keep their number unless removed; slots from `kept` to `old_count`
+    /// are mapped by mark_moved() and mark_gone() (all of them, before the map is read).
+    SlotRenumbering(std::size_t kept, std::size_t old_count)
+        : kept_(kept), removed_below_((kept + 63) / 64, 0), moved_(old_count - kept, kNoSlot) {}
+
+    void mark_removed_below(Slot slot) { removed_below_[slot / 64] |= std::uint64_t{1} << (slot % 64); }
+    void mark_moved(Slot from, Slot to) { moved_[from - kept_] = to; }
+
+    /// The new slot of `slot` (a slot of the store before the compaction), or kNoSlot.
+    [[nodiscard]] Slot operator()(Slot slot) const noexcept {
+        if (slot < kept_) return (removed_below_[slot / 64] >> (slot % 64)) & 1U ? kNoSlot : slot;
+        const std::size_t above = slot - kept_;
+        return above < moved_.size() ? moved_[above] : kNoSlot;
+    }
+
+    /// Slots before the compaction.
+    [[nodiscard]] std::size_t old_count() const noexcept { return kept_ + moved_.size(); }
+
+private:
+    std::size_t kept_ = 0;
+    std::vector<std::uint64_t> removed_below_;  // a bit per slot below kept_: the box was removed
+    std::vector<Slot> moved_;                   // new slots of the old slots from kept_ on
+};
+
+}  // namespace smb::detail
