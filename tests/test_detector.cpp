@@ -316,19 +316,7 @@ TEST(DetectorPrecision, SettlesOnTheDoublesWhatTheFloatsCannot) {
 // pair, where the floats' overlaps by a margin are reported without a second test: a pair
 // within the floats' resolution must still reach the doubles, on one thread and on two.
 TEST(DetectorPrecision, SettlesOnTheDoublesWhatTheFloatsCannotInSmallCells) {
-    const double gap = 1e-12;
-    std::vector<Box3d> boxes;
-    for (int i = 0; i < 10; ++i) {
-        for (int j = 0; j < 10; ++j) {
-            for (int l = 0; l < 10; ++l) {
-                const double x = 3.0 * i, y = 3.0 * j, z = 3.0 * l;
-                boxes.push_back(Box3d{{x, y, z}, {x + 1, y + 1, z + 1}});
-                boxes.push_back(Box3d{{x + 1 + gap, y, z}, {x + 2, y + 1, z + 1}});  // apart by 1e-12
-                boxes.push_back(Box3d{{x, y + 1, z}, {x + 1, y + 2, z + 1}});        // touching
-                boxes.push_back(Box3d{{x + 0.5, y + 0.5, z + 1 - gap}, {x + 1.5, y + 1.5, z + 2}});  // overlap 1e-12
-            }
-        }
-    }
+    const std::vector<Box3d> boxes = near_touching_lattice(10);
     const std::vector<Pair> expected = brute_force(boxes);
     for (const std::size_t threads : {1U, 2U}) {
         WorldSettings settings;

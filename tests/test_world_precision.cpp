@@ -27,25 +27,13 @@ struct Scene {
     }
 };
 
-/// Boxes that floats cannot tell apart from touching, spread over a lattice so that the cells
-/// stay small and are tested pair by pair, under ids that are neither the slots nor in order.
+/// Boxes that floats cannot tell apart from touching (near_touching_lattice()), under ids that
+/// are neither the slots nor in order.
 Scene near_scene() {
     Scene scene;
     std::vector<BoxId>& ids = scene.ids;
     std::vector<Box3d>& boxes = scene.boxes;
-    const double gap = 1e-12;
-    for (int i = 0; i < 8; ++i) {
-        for (int j = 0; j < 8; ++j) {
-            for (int l = 0; l < 8; ++l) {
-                const double x = 3.0 * i, y = 3.0 * j, z = 3.0 * l;
-                boxes.push_back(Box3d{{x, y, z}, {x + 1, y + 1, z + 1}});
-                boxes.push_back(Box3d{{x + 1 + gap, y, z}, {x + 2, y + 1, z + 1}});  // apart by 1e-12
-                boxes.push_back(Box3d{{x, y + 1, z}, {x + 1, y + 2, z + 1}});        // touching
-                boxes.push_back(
-                    Box3d{{x + 0.5, y + 0.5, z + 1 - gap}, {x + 1.5, y + 1.5, z + 2}});  // overlap 1e-12
-            }
-        }
-    }
+    boxes = near_touching_lattice(8);
     ids.resize(boxes.size());
     for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<BoxId>(7919 * (ids.size() - i) + 13);
     // Inserted in a shuffled order, so that no slot is the index above either.
@@ -115,11 +103,8 @@ TEST(WorldPrecision, SettlesOnTheStoredDoublesAfterRemovalsRenumberTheSlots) {
 
 TEST(WorldPrecision, HoldsDoublesWhereFloatsWouldNotResolveTheScene) {
     Random random(3);
-    std::vector<Box3d> points;
-    for (int i = 0; i < 1000; ++i) {
-        const double x = uniform(random, 0, 100), y = uniform(random, 0, 100), z = uniform(random, 0, 100);
-        points.push_back(Box3d{{x, y, z}, {x, y, z}});
-    }
+    std::vector<Box3d> points;  // boxes of no size: floats would turn them into a crowd
+    for (int i = 0; i < 1000; ++i) points.push_back(random_box<double, 3>(random, 0, 100, 0, 0));
     World3d world;
     world.assign(points);
     EXPECT_TRUE(detected(world).empty());

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <random>
+#include <vector>
 
 #include "smb/box.hpp"
 
@@ -71,6 +72,26 @@ Box<Real, Dim> perturbed(Random& random, const Box<Real, Dim>& box, double max_s
         half[k] = std::max(0.0, 0.5 * (hi - lo) + 0.5 * uniform(random, -max_growth, max_growth));
     }
     return box_around<Real, Dim>(centre, half);
+}
+
+/// Four boxes at every point of a lattice of per_axis^3 points 3 apart: a unit box, one apart
+/// from it by 1e-12 on x, one touching it on y, and one overlapping it by 1e-12 on z: pairs that
+/// floats cannot tell apart from touching, in cells small enough to be tested pair by pair.
+inline std::vector<Box3d> near_touching_lattice(int per_axis) {
+    const double gap = 1e-12;
+    std::vector<Box3d> boxes;
+    for (int i = 0; i < per_axis; ++i) {
+        for (int j = 0; j < per_axis; ++j) {
+            for (int l = 0; l < per_axis; ++l) {
+                const double x = 3.0 * i, y = 3.0 * j, z = 3.0 * l;
+                boxes.push_back(Box3d{{x, y, z}, {x + 1, y + 1, z + 1}});
+                boxes.push_back(Box3d{{x + 1 + gap, y, z}, {x + 2, y + 1, z + 1}});
+                boxes.push_back(Box3d{{x, y + 1, z}, {x + 1, y + 2, z + 1}});
+                boxes.push_back(Box3d{{x + 0.5, y + 0.5, z + 1 - gap}, {x + 1.5, y + 1.5, z + 2}});
+            }
+        }
+    }
+    return boxes;
 }
 
 }  // namespace smb::test
