@@ -193,10 +193,7 @@ public:
     /// input boxes that overlap: the all-pairs test then calls report(a, b, true) where the
     /// report takes a third argument, and report(a, b, false) for the other pairs it passes,
     /// which the caller tests again. The default, infinity, proves nothing.
-    void set_sure_margin(float margin) noexcept {
-        sure_margin_ = margin;
-        settles_ = margin != std::numeric_limits<float>::infinity();
-    }
+    void set_sure_margin(float margin) noexcept { sure_margin_ = margin; }
 
     /// check() by testing every pair; `home` gets the positions in the order of `entries`.
     template <class Report>
@@ -361,13 +358,16 @@ private:
             const std::uint32_t j = hits_[t] & 0xFFFFU;
             if constexpr (kExactLanes && std::invocable<Report&, std::uint32_t, std::uint32_t, bool>) {
                 // Exact input (an infinite margin) has nothing to settle: the test is skipped.
-                report(position[i], position[j], settles_ && overlap_by_margin(i, j));
+                report(position[i], position[j], settles() && overlap_by_margin(i, j));
             } else if (kExactLanes || overlaps(boxes[position[i]], boxes[position[j]])) {
                 report(position[i], position[j]);
             }
         }
         append_home(m, home);
     }
+
+    /// Whether the margin can settle anything: exact input has an infinite one.
+    [[nodiscard]] bool settles() const noexcept { return sure_margin_ != std::numeric_limits<float>::infinity(); }
 
     // Whether laid-out boxes i and j overlap by at least the sure margin on every axis, read
     // from the columns the rows just read (in L1), without a branch.
@@ -524,7 +524,6 @@ private:
     std::vector<std::uint64_t> order_;
     CellColumns columns_;
     float sure_margin_ = std::numeric_limits<float>::infinity();
-    bool settles_ = false;  // a finite margin
     std::vector<std::uint32_t> hits_;      // the pairs the lanes passed, as (i << 16 | j), in row order
     std::vector<std::uint32_t> own_home_;  // the cell's home boxes, on their way to `home`
 };

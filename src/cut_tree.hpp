@@ -160,8 +160,8 @@ public:
         }
     }
 
-    /// The axial cut of a group of n boxes, box j's lower end given by key_at(j, key) (false: the
-    /// box takes no part, being oversized). The keys are gathered into `selector`: all of them,
+    /// The axial cut of a group of n boxes, box j's lower end given by key_at(j). The keys are
+    /// gathered into `selector`: all of them,
     /// or, in a group of more than twice kSamplePerSegment keys per segment, those of the boxes
     /// at floor(i n / s) for s = kSamplePerSegment * k, which spares copying every key.
     /// Deterministic. An order of the boxes that aliases with the stride can only make the
@@ -173,10 +173,7 @@ public:
         const std::size_t take = n > 2 * sample ? sample : n;
         std::vector<Real>& keys = selector.keys;
         keys.clear();
-        Real key{};
-        for (std::size_t i = 0; i < take; ++i) {
-            if (key_at(take == n ? i : i * n / take, key)) keys.push_back(key);
-        }
+        for (std::size_t i = 0; i < take; ++i) keys.push_back(key_at(take == n ? i : i * n / take));
         cut(level, group, selector);
     }
 

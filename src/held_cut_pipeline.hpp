@@ -6,7 +6,6 @@
 // pairs stay exact, since every pair the floats cannot settle is tested again on the input.
 // Float boxes are held as they are.
 
-#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <span>
@@ -107,8 +106,8 @@ public:
         rounded_.fold_removals(renumbering);
     }
 
-    /// Slots the pipeline in use lists (the other lists none).
-    [[nodiscard]] std::size_t listed() const noexcept { return std::max(exact_.listed(), rounded_.listed()); }
+    /// Slots the pipeline in use lists.
+    [[nodiscard]] std::size_t listed() const noexcept { return uses_rounded() ? rounded_.listed() : exact_.listed(); }
 
     /// Gives the pipelines' memory back (their cuts and order too); keeps the judgement.
     void release() {

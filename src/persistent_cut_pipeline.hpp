@@ -332,13 +332,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
 #ifdef SMB_VALIDATE
     check_invariants(boxes);
 #endif
-    // The check wrote positions in the ordered copy; the next order holds their slots. There
-    // used to be a second judgement here: when most boxes' places in the order had moved by more
-    // than a column's share, the next detection located without the hint. The boxes a step
-    // adds shift every later place by up to their number, about Λ N, while a column holds
-    // about N^(1/3) boxes: at 10M boxes and Λ = 1e-3 every step that added boxes judged the
-    // order cold and located by binary search, and the levels took 2.5 times as long in those
-    // steps (docs/performance.md). judge_hints() measures what matters, the misses.
+    // The check wrote positions in the ordered copy; the next order holds their slots. How far
+    // boxes moved in the order is no sign of motion (the boxes a step adds shift every later
+    // place by up to their number): judge_hints() measured the misses (docs/performance.md).
     const auto count = static_cast<std::ptrdiff_t>(next_order_.size());
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (std::ptrdiff_t i = 0; i < count; ++i) next_order_[i] = order_[next_order_[i]];
@@ -584,10 +580,8 @@ double PersistentCutPipeline<Real, Dim, Input>::regroup_first_level(std::size_t 
     const std::uint32_t fullest = cuts_.was_cut(0, 0) ? locate_shares() : 0;
     if (cuts_.needs_cut(0, 0, fullest)) {
         const auto cut_start = Clock::now();
-        cuts_.cut_group(0, 0, n, [&](std::size_t i, Real& key) {
-            key = boxes[i].min[axis_of_level(0)];
-            return true;
-        }, workers_[0].quantiles);
+        cuts_.cut_group(0, 0, n, [&](std::size_t i) { return boxes[i].min[axis_of_level(0)]; },
+                        workers_[0].quantiles);
         const std::uint32_t balanced = locate_shares();
         std::size_t registrations = 0;
         for (const WorkerScratch& worker : workers_)
@@ -665,10 +659,8 @@ double PersistentCutPipeline<Real, Dim, Input>::regroup_level(int level, std::sp
             // What the old planes called oversized is judged again against the new ones.
             worker.marks.resize(marked_before);
             // No entry is published oversized (see locate_group()): every one takes part.
-            cuts_.cut_group(level, g, entries.size(), [&](std::size_t i, Real& key) {
-                key = boxes[entries[i]].min[axis];
-                return true;
-            }, worker.quantiles);
+            cuts_.cut_group(level, g, entries.size(), [&](std::size_t i) { return boxes[entries[i]].min[axis]; },
+                            worker.quantiles);
             const std::uint32_t balanced = locate_group(level, g, entries, boxes, ranges, segment_count, worker);
             std::size_t registrations = 0;
             for (std::uint32_t s = 0; s < k; ++s) registrations += segment_count[s];
