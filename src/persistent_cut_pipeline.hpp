@@ -179,7 +179,8 @@ private:
 
     void plan_segments(std::size_t n, const WorldSettings& settings);
     void plan_threads(const WorldSettings& settings);
-    double run_levels(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids);
+    double run_levels(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids,
+                      DetectStats& stats);
     void gather_in_order(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids);
     double regroup_level(int level, std::span<const Position> in, std::span<const std::uint32_t> in_begin,
                          std::span<const Box<Real, Dim>> boxes, std::vector<Position>& out,
@@ -314,7 +315,7 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     if (cold) locate_without_hint_.fill(true);
 
     const auto start = Clock::now();
-    const double cutting = run_levels(store_boxes, store_ids);
+    const double cutting = run_levels(store_boxes, store_ids, stats);
     // The misses of a cold order say nothing of the next detection, whose entries will come in
     // this one's cells: it tries the hint, and judges again from its own misses.
     if (cold) locate_without_hint_.fill(false);
@@ -343,27 +344,36 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
 }
 
 /// Copies the boxes in order_'s order and regroups them level by level; returns the seconds
-/// spent cutting.
+/// spent cutting, and writes the copy's and each level's seconds to `stats`.
 template <std::floating_point Real, int Dim, std::floating_point Input>
 double PersistentCutPipeline<Real, Dim, Input>::run_levels(std::span<const Box<Input, Dim>> store_boxes,
-                                                   std::span<const BoxId> store_ids) {
+                                                   std::span<const BoxId> store_ids, DetectStats& stats) {
     const std::size_t n = store_boxes.size();
+    auto seconds_since = [](Clock::time_point start) {
+        return std::chrono::duration<double>(Clock::now() - start).count();
+    };
+    auto phase = Clock::now();
     resize_with_slack(oversized_, n);
     std::fill(oversized_.begin(), oversized_.end(), std::uint8_t{0});
     oversized_list_.clear();
     // The boxes are copied once in last step's cell order: every later pass reads them almost
     // sequentially, where reading them by slot would miss the cache on nearly every box.
     gather_in_order(store_boxes, store_ids);
+    stats.copy_seconds = seconds_since(phase);
+    phase = Clock::now();
     const std::span<const Box<Real, Dim>> boxes(ordered_);
     double cutting = regroup_first_level(n, boxes, lists_[0], begin_[0]);
     judge_hints(0);
+    stats.level_seconds[0] = seconds_since(phase);
     cells_list_ = 0;
     for (int level = 1; level < Dim; ++level) {
+        phase = Clock::now();
         const int source = (level - 1) % 2;
         const int target = level % 2;
         cutting += regroup_level(level, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
         judge_hints(level);
         cells_list_ = target;
+        stats.level_seconds[static_cast<std::size_t>(level)] = seconds_since(phase);
     }
     // In x order (ties by id), so that the report and the next order depend on the boxes alone.
     std::sort(oversized_list_.begin(), oversized_list_.end(), [&](Position x, Position y) {

@@ -18,6 +18,7 @@
 #include "reference/pair_check.hpp"
 #include "reference/random_boxes.hpp"
 #include "smb/detector.hpp"
+#include "smb/world.hpp"
 
 namespace smb::test {
 namespace {
@@ -264,6 +265,69 @@ TEST(DetectorStats, PhasesAreSharesOfTheCallOnSeveralThreads) {
         EXPECT_LE(first.sort_seconds + first.cut_regroup_seconds + first.check_seconds, first.total_seconds)
             << threads << " thread(s)";
     }
+}
+
+// The copy's and the levels' seconds split the two phases they come from: never negative, never
+// more than those phases together, one level per axis (the third zero in 2D), on the build and
+// on a warm step, on one thread and on two.
+template <int Dim>
+void expect_levels_within_their_phases(std::size_t threads) {
+    Random random(6);
+    std::vector<Box<double, Dim>> boxes;
+    for (int i = 0; i < 50000; ++i) {
+        Box<double, Dim> box;
+        for (int k = 0; k < Dim; ++k) {
+            box.min[k] = uniform(random, 0, 60);
+            box.max[k] = box.min[k] + 1;
+        }
+        boxes.push_back(box);
+    }
+    WorldSettings settings;
+    settings.threads = threads;
+    Detector<double, Dim> detector(settings);
+    std::vector<Pair> pairs;
+    for (int step = 0; step < 2; ++step) {
+        SCOPED_TRACE(::testing::Message() << Dim << "D, " << threads << " thread(s), step " << step);
+        const DetectStats stats = detector.detect(boxes, pairs);
+        double split = stats.copy_seconds;
+        EXPECT_GE(stats.copy_seconds, 0.0);
+        for (std::size_t level = 0; level < stats.level_seconds.size(); ++level) {
+            if (level < static_cast<std::size_t>(Dim)) {
+                EXPECT_GT(stats.level_seconds[level], 0.0) << "level " << level;
+            } else {
+                EXPECT_EQ(stats.level_seconds[level], 0.0) << "level " << level;
+            }
+            split += stats.level_seconds[level];
+        }
+        EXPECT_LE(split, stats.sort_seconds + stats.cut_regroup_seconds + 1e-9);
+        for (Box<double, Dim>& box : boxes) {
+            box.min[0] += 0.01;
+            box.max[0] += 0.01;
+        }
+    }
+}
+
+TEST(DetectorStats, LevelsSplitTheirPhases) {
+    for (const std::size_t threads : {1U, 2U}) {
+        expect_levels_within_their_phases<2>(threads);
+        expect_levels_within_their_phases<3>(threads);
+    }
+}
+
+// The paper's pipeline has no copy and no levels of kept cuts: it leaves them zero.
+TEST(DetectorStats, PaperPipelineLeavesTheLevelsZero) {
+    WorldSettings paper;
+    paper.pipeline = Pipeline::paper_lists;
+    World3d world(paper);
+    for (BoxId id = 0; id < 1000; ++id) {
+        const double x = static_cast<double>(id % 10), y = static_cast<double>(id / 10 % 10), z = static_cast<double>(id / 100);
+        world.insert(id, Box3d{{x, y, z}, {x + 1.5, y + 1.5, z + 1.5}});
+    }
+    std::vector<Pair> pairs;
+    const DetectStats stats = world.detect(pairs);
+    EXPECT_FALSE(pairs.empty());
+    EXPECT_EQ(stats.copy_seconds, 0.0);
+    for (const double seconds : stats.level_seconds) EXPECT_EQ(seconds, 0.0);
 }
 
 TEST(DetectorSettings, RefusesThePaperPipelineAndBadSettings) {

@@ -29,6 +29,9 @@ public:
         phases_.sort_seconds += stats.sort_seconds;
         phases_.cut_regroup_seconds += stats.cut_regroup_seconds;
         phases_.check_seconds += stats.check_seconds;
+        phases_.copy_seconds += stats.copy_seconds;
+        for (std::size_t level = 0; level < stats.level_seconds.size(); ++level)
+            phases_.level_seconds[level] += stats.level_seconds[level];
         phases_.total_seconds += stats.total_seconds;
         phases_.sort_moves += stats.sort_moves;
         phases_.cells = stats.cells;
@@ -43,7 +46,9 @@ public:
         std::ostringstream json;
         json << "\"smb_update_s\":" << phases_.update_seconds / n << ",\"smb_sort_s\":" << phases_.sort_seconds / n
              << ",\"smb_cut_regroup_s\":" << phases_.cut_regroup_seconds / n << ",\"smb_check_s\":"
-             << phases_.check_seconds / n << ",\"smb_detect_s\":" << phases_.total_seconds / n
+             << phases_.check_seconds / n << ",\"smb_copy_s\":" << phases_.copy_seconds / n
+             << ",\"smb_level_s\":[" << phases_.level_seconds[0] / n << ',' << phases_.level_seconds[1] / n << ','
+             << phases_.level_seconds[2] / n << "],\"smb_detect_s\":" << phases_.total_seconds / n
              << ",\"smb_sort_moves\":" << static_cast<double>(phases_.sort_moves) / n << ",\"smb_cells\":" << phases_.cells
              << ",\"smb_oversized\":" << phases_.oversized_boxes << ",\"smb_bytes_held\":" << phases_.bytes_held;
         return json.str();

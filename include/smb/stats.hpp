@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 
 namespace smb {
@@ -27,6 +28,13 @@ struct DetectStats {
     double sort_seconds = 0;
     double cut_regroup_seconds = 0;    ///< axial cuts, singular regrouping, per-cell lists
     double check_seconds = 0;          ///< cell checks (with their sorts), oversized boxes, reporting
+    /// Where sort_seconds and cut_regroup_seconds went (Pipeline::persistent_cuts; zero
+    /// elsewhere): copy_seconds copied the boxes in last step's cell order, level_seconds[l]
+    /// located, cut again where needed and regrouped level l, whose axis is Dim - 1 - l (z, y, x
+    /// in 3D; the third stays zero in 2D). Together they are the two phases' time but for the
+    /// bookkeeping between them.
+    double copy_seconds = 0;
+    std::array<double, 3> level_seconds{};
     double total_seconds = 0;          ///< the whole call
 };
 

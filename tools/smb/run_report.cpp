@@ -68,6 +68,12 @@ const StepQuantity check_time = [](const StepRecord& s) { return s.stats.check_s
 const StepQuantity skin_candidates = [](const StepRecord& s) { return static_cast<double>(s.stats.skin_candidates); };
 const StepQuantity skin_refreshed = [](const StepRecord& s) { return static_cast<double>(s.stats.skin_refreshed); };
 const StepQuantity list_update_time = [](const StepRecord& s) { return s.stats.update_seconds; };
+const StepQuantity copy_time = [](const StepRecord& s) { return s.stats.copy_seconds; };
+StepQuantity level_time(std::size_t level) {
+    return [level](const StepRecord& s) { return s.stats.level_seconds[level]; };
+}
+/// The axis of level `level` in `dimension`D: the levels cut the last axis first.
+char level_axis(int dimension, std::size_t level) { return "xyz"[static_cast<std::size_t>(dimension) - 1 - level]; }
 
 }  // namespace
 
@@ -99,6 +105,14 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
                                             duration_text(median_after_build(run, sort_time)),
                                             duration_text(median_after_build(run, cut_time)),
                                             duration_text(median_after_build(run, check_time))));
+        if (run.pipeline != "paper") {
+            std::string levels = "copy " + duration_text(median_after_build(run, copy_time));
+            for (std::size_t level = 0; level < static_cast<std::size_t>(run.dimension); ++level) {
+                levels += fmt::format(", {} {}", level_axis(run.dimension, level),
+                                      duration_text(median_after_build(run, level_time(level))));
+            }
+            line("levels (median)", levels);
+        }
         if (run.skin > 0) {
             const auto rebuilt = static_cast<std::size_t>(
                 std::count_if(run.steps.begin() + 1, run.steps.end(), [](const StepRecord& s) { return s.stats.skin_rebuilt; }));
@@ -191,6 +205,14 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
                                {"cut_regroup", median_after_build(run, cut_time)},
                                {"check", median_after_build(run, check_time)}}
                         : json(nullptr);
+    if (has_later_steps && run.pipeline != "paper") {
+        json levels = json::object();
+        for (std::size_t level = 0; level < static_cast<std::size_t>(run.dimension); ++level)
+            levels[std::string(1, level_axis(run.dimension, level))] = median_after_build(run, level_time(level));
+        summary["level_seconds_median"] = {{"copy", median_after_build(run, copy_time)}, {"levels", levels}};
+    } else {
+        summary["level_seconds_median"] = nullptr;
+    }
     summary["pairs"] = {{"median", median_json(pair_count)},
                         {"last", run.steps.empty() ? 0 : run.steps.back().stats.pairs}};
     summary["bytes_held"] = run.bytes_held;
