@@ -18,8 +18,8 @@ class SlotRenumbering {
 public:
     SlotRenumbering() = default;
 
-    /// Slots below `kept` keep their number unless removed; slots from `kept` to `old_count`
-    /// are mapped by mark_moved() and mark_gone() (all of them, before the map is read).
+    /// Slots below `kept` keep their number unless marked removed; slots from `kept` to
+    /// `old_count` are removed unless mark_moved() gives them a new one.
     SlotRenumbering(std::size_t kept, std::size_t old_count)
         : kept_(kept), removed_below_((kept + 63) / 64, 0), moved_(old_count - kept, kNoSlot) {}
 
