@@ -36,6 +36,7 @@
 
 #include "assert.hpp"
 #include "box_store.hpp"
+#include "cell_scratch.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 
@@ -223,13 +224,8 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        std::size_t bytes = order_.capacity() * sizeof(std::uint64_t);
-        for (const auto& column : columns_.min) bytes += column.capacity() * sizeof(float);
-        for (const auto& column : columns_.max) bytes += column.capacity() * sizeof(float);
-        bytes += columns_.inside.capacity() * sizeof(Mask) + columns_.key.capacity() * sizeof(std::uint32_t) +
-                 columns_.position.capacity() * sizeof(std::uint32_t) +
-                 (hits_.capacity() + own_home_.capacity()) * sizeof(std::uint32_t);
-        return bytes;
+        return order_.capacity() * sizeof(std::uint64_t) + scratch_.bytes_held() +
+               own_home_.capacity() * sizeof(std::uint32_t);
     }
 
 private:
@@ -241,48 +237,30 @@ private:
     static constexpr std::size_t kPadding = 8;  // the most lanes
 
     static constexpr bool kExactLanes = std::is_same_v<Real, float>;
-    using Mask = std::int32_t;
-
-    /// The cell's boxes, one array per coordinate (as floats), in x order for the sweep or as
-    /// registered for the all-pairs test, padded with kPadding boxes that reach nothing (min NaN,
-    /// key above every real key) so that the last group of lanes may read past the end.
-    struct CellColumns {
-        std::array<std::vector<float>, Dim> min;
-        std::array<std::vector<float>, Dim> max;
-        std::vector<Mask> inside;
-        std::vector<std::uint32_t> key;
-        std::vector<std::uint32_t> position;
-    };
+    using Mask = typename CellScratch<Dim>::Mask;
 
     void lay_out_sorted(const std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
                         std::span<const Box<Real, Dim>> boxes, const CellFloor<Real, Dim>& floor) {
-        lay_out_columns(m, [&](std::size_t r) { return entries[order[r] & 0xFFFFFFFFU]; },
+        lay_out_columns(m, 0, [&](std::size_t r) { return entries[order[r] & 0xFFFFFFFFU]; },
                         [&](std::size_t r) { return static_cast<std::uint32_t>(order[r] >> 32); }, boxes, floor);
     }
 
-    /// As registered, for the all-pairs test, which reads no keys.
+    /// As registered, for the all-pairs test, which reads no keys, with room for every pair.
     void lay_out(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
                  const CellFloor<Real, Dim>& floor) {
-        lay_out_columns(entries.size(), [&](std::size_t r) { return entries[r]; }, NoKeys{}, boxes, floor);
+        const std::size_t m = entries.size();
+        lay_out_columns(m, m * (m - (m > 0 ? 1 : 0)) / 2 + kPadding, [&](std::size_t r) { return entries[r]; },
+                        NoKeys{}, boxes, floor);
     }
 
     struct NoKeys {};  // the all-pairs test reads no keys: none are written
 
     template <class PositionAt, class KeyAt>
-    [[gnu::always_inline]] inline void lay_out_columns(std::size_t m, PositionAt position_at, KeyAt key_at,
-                                                       std::span<const Box<Real, Dim>> boxes,
+    [[gnu::always_inline]] inline void lay_out_columns(std::size_t m, std::size_t hit_room, PositionAt position_at,
+                                                       KeyAt key_at, std::span<const Box<Real, Dim>> boxes,
                                                        const CellFloor<Real, Dim>& floor) {
         const std::size_t padded = m + kPadding;
-        // The columns only grow (a resize of each, at every cell, was nine calls out of line).
-        if (columns_.position.size() < padded) {
-            for (int k = 0; k < Dim; ++k) {
-                columns_.min[k].resize(padded);
-                columns_.max[k].resize(padded);
-            }
-            columns_.inside.resize(padded);
-            columns_.key.resize(padded);
-            columns_.position.resize(padded);
-        }
+        columns_ = scratch_.lay_out_for(padded, hit_room);
         for (std::size_t r = 0; r < m; ++r) {
             const std::uint32_t position = position_at(r);
             const Box<Real, Dim>& box = boxes[position];
@@ -340,8 +318,6 @@ private:
     void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
                         std::vector<std::uint32_t>& home) {
         SMB_ASSERT(m <= kMostPaired, "a cell tested pair by pair packs two local numbers in 31 bits");
-        const std::size_t most_hits = m * (m - (m > 0 ? 1 : 0)) / 2 + kPadding;
-        if (hits_.size() < most_hits) hits_.resize(most_hits);
         std::size_t count = 0;
 #if SMB_SWEEP_AVX2
         if (cpu_has_avx2()) {
@@ -352,10 +328,11 @@ private:
 #else
         count = pair_rows_in_lanes<4>(m);
 #endif
-        const std::uint32_t* position = columns_.position.data();
+        const std::uint32_t* position = columns_.position;
+        const std::uint32_t* hits = columns_.hits;
         for (std::size_t t = 0; t < count; ++t) {
-            const std::uint32_t i = hits_[t] >> 16;
-            const std::uint32_t j = hits_[t] & 0xFFFFU;
+            const std::uint32_t i = hits[t] >> 16;
+            const std::uint32_t j = hits[t] & 0xFFFFU;
             if constexpr (kExactLanes && std::invocable<Report&, std::uint32_t, std::uint32_t, bool>) {
                 // Exact input (an infinite margin) has nothing to settle: the test is skipped.
                 report(position[i], position[j], settles() && overlap_by_margin(i, j));
@@ -374,8 +351,8 @@ private:
     [[nodiscard]] bool overlap_by_margin(std::uint32_t i, std::uint32_t j) const noexcept {
         bool by_margin = true;
         for (int k = 0; k < Dim; ++k) {
-            const float* min = columns_.min[k].data();
-            const float* max = columns_.max[k].data();
+            const float* min = columns_.min[k];
+            const float* max = columns_.max[k];
             by_margin &= (max[j] - min[i] >= sure_margin_) & (max[i] - min[j] >= sure_margin_);
         }
         return by_margin;
@@ -415,15 +392,15 @@ private:
         using FloatLanes = typename SweepLanes<Lanes>::Floats;
         using MaskLanes = typename SweepLanes<Lanes>::Masks;
         MaskLanes others;
-        load(others, columns_.inside.data() + j);
+        load(others, columns_.inside + j);
         MaskLanes hit = (others | own) == static_cast<Mask>(kAllInside);
         for (int k = 0; k < Dim; ++k) {
             FloatLanes lower;
-            load(lower, columns_.min[k].data() + j);
+            load(lower, columns_.min[k] + j);
             hit &= lower <= high[k];
             if (!Swept || k > 0) {
                 FloatLanes upper;
-                load(upper, columns_.max[k].data() + j);
+                load(upper, columns_.max[k] + j);
                 hit &= upper >= low[k];
             }
         }
@@ -442,9 +419,9 @@ private:
     template <std::size_t Lanes, class Report>
     [[gnu::always_inline]] inline void sweep_in_lanes(std::size_t m, std::span<const Box<Real, Dim>> boxes,
                                                       Report& report) const {
-        const std::uint32_t* key = columns_.key.data();
-        const Mask* inside = columns_.inside.data();
-        const std::uint32_t* position = columns_.position.data();
+        const std::uint32_t* key = columns_.key;
+        const Mask* inside = columns_.inside;
+        const std::uint32_t* position = columns_.position;
         for (std::size_t i = 0; i < m; ++i) {
             const std::uint32_t stop = monotone_key(columns_.max[0][i]);
             std::array<float, Dim> low{}, high{};  // low[0] unused, see sweep()
@@ -460,14 +437,15 @@ private:
         }
     }
 
-    /// Writes hits_ with every pair (i << 16 | j, i < j) that passes the lanes' test, row by
+    /// Writes the hit list with every pair (i << 16 | j, i < j) that passes the lanes' test, row by
     /// row; returns their number.
     template <std::size_t Lanes>
     [[gnu::always_inline]] inline std::size_t pair_rows_in_lanes(std::size_t m) {
         using MaskLanes = typename SweepLanes<Lanes>::Masks;
         MaskLanes lane{};
         for (std::size_t l = 0; l < Lanes; ++l) lane[l] = static_cast<Mask>(l);
-        std::uint32_t* out = hits_.data();
+        std::uint32_t* const first = columns_.hits;
+        std::uint32_t* out = first;
         for (std::size_t i = 0; i < m; ++i) {
             std::array<float, Dim> low{}, high{};
             row_corners(i, low, high);
@@ -478,7 +456,7 @@ private:
                 pair += static_cast<Mask>(Lanes);
             }
         }
-        return static_cast<std::size_t>(out - hits_.data());
+        return static_cast<std::size_t>(out - first);
     }
 
     // Boxes whose keys are equal arrive in an order that depends on the previous step; ordering
@@ -522,9 +500,13 @@ private:
     }
 
     std::vector<std::uint64_t> order_;
-    CellColumns columns_;
+    CellScratch<Dim> scratch_;
+    // The cell's boxes, one array per coordinate (as floats), in x order for the sweep or as
+    // registered for the all-pairs test, padded with kPadding boxes that reach nothing (min NaN,
+    // key above every real key) so that the last group of lanes may read past the end; and the
+    // pairs the lanes passed, as (i << 16 | j), in row order.
+    typename CellScratch<Dim>::Columns columns_;
     float sure_margin_ = std::numeric_limits<float>::infinity();
-    std::vector<std::uint32_t> hits_;      // the pairs the lanes passed, as (i << 16 | j), in row order
     std::vector<std::uint32_t> own_home_;  // the cell's home boxes, on their way to `home`
 };
 

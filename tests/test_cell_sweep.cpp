@@ -205,6 +205,62 @@ namespace {
 
 /// append_set_lanes<Lanes> for every pattern of lane bits: the set lanes' values, in lane order,
 /// and the end just past them. Runs the eight lanes only where they can run (AVX2).
+// The scratch of a cell (src/cell_scratch.hpp): every array on a cache line of its own, none
+// overlapping another, the hit list after the columns; and for a usual cell (up to 80 boxes,
+// 256 hits) no hit shares its place modulo 4 KiB with what the pair test's rows load
+// (the lower-corner bits and the coordinates), so that no store of a hit holds up those loads.
+template <int Dim>
+void expect_scratch_laid_out(std::size_t rows, std::size_t hit_room, CellScratch<Dim>& scratch) {
+    SCOPED_TRACE(::testing::Message() << "Dim " << Dim << ", rows " << rows << ", hits " << hit_room);
+    const auto columns = scratch.lay_out_for(rows, hit_room);
+    auto at = [](const void* pointer) { return reinterpret_cast<std::uintptr_t>(pointer); };
+    std::vector<std::pair<std::uintptr_t, std::uintptr_t>> ranges;  // [first, last) bytes
+    std::vector<std::pair<std::uintptr_t, std::uintptr_t>> loaded;  // what the rows load
+    auto add = [&](const void* first, std::size_t words, bool rows_load) {
+        EXPECT_EQ(at(first) % 64, 0U) << "an array off its cache line";
+        ranges.emplace_back(at(first), at(first) + 4 * words);
+        if (rows_load) loaded.emplace_back(at(first), at(first) + 4 * words);
+    };
+    add(columns.position, rows, false);
+    add(columns.key, rows, false);
+    add(columns.inside, rows, true);
+    for (int k = 0; k < Dim; ++k) {
+        add(columns.min[static_cast<std::size_t>(k)], rows, true);
+        add(columns.max[static_cast<std::size_t>(k)], rows, true);
+    }
+    for (std::size_t a = 0; a < ranges.size(); ++a) {
+        EXPECT_GE(at(columns.hits), ranges[a].second) << "the hits start before a column ends";
+        for (std::size_t b = a + 1; b < ranges.size(); ++b)
+            EXPECT_TRUE(ranges[a].second <= ranges[b].first || ranges[b].second <= ranges[a].first) << "arrays overlap";
+    }
+    // Writable end to end: a sanitizer build would catch a buffer too small for them.
+    std::fill_n(columns.hits, hit_room, 0xFFFFFFFFU);
+    for (const auto& range : ranges) std::fill_n(reinterpret_cast<std::uint32_t*>(range.first), rows, 0U);
+    const std::uintptr_t base = at(columns.position);
+    EXPECT_EQ(base % 4096, 0U) << "the layout does not start on a 4 KiB boundary";
+    const std::size_t usual_hits = std::min<std::size_t>(hit_room, 256);
+    if (rows <= 88) {
+        for (std::uintptr_t hit = at(columns.hits); hit < at(columns.hits + usual_hits); hit += 4) {
+            for (const auto& range : loaded) {
+                for (std::uintptr_t load = range.first; load < range.second; load += 4)
+                    ASSERT_NE((hit - base) % 4096, (load - base) % 4096) << "a hit aliases a loaded column";
+            }
+        }
+    }
+}
+
+TEST(CellScratch, ColumnsAndHitsApartOnTheirOwnLinesAndNotAliasedModulo4KiB) {
+    CellScratch<3> scratch3;  // one object throughout: it grows and is laid out again
+    CellScratch<2> scratch2;
+    for (const std::size_t m : {0, 1, 7, 24, 46, 64, 80, 100, 128, 300, 60}) {
+        const std::size_t rows = m + 8;
+        const std::size_t all_pairs = m * (m - (m > 0 ? 1 : 0)) / 2 + 8;
+        expect_scratch_laid_out<3>(rows, all_pairs, scratch3);
+        expect_scratch_laid_out<3>(rows, 0, scratch3);
+        expect_scratch_laid_out<2>(rows, all_pairs, scratch2);
+    }
+}
+
 template <std::size_t Lanes>
 void expect_set_lanes_appended() {
     typename SweepLanes<Lanes>::Masks values{};
