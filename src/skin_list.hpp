@@ -359,8 +359,12 @@ private:
             }
             if (p + ahead < last && slot_of_[p + ahead] < n) prefetch_whole(&input_[slot_of_[p + ahead]]);
             const Held held = held_box<Input, Dim>(input_[slot], origin_);
+            // Read before held_[p] is written: the two arrays start alike modulo 4 KiB (each its
+            // own mapping), so the load after the store waited on it (4K aliasing; the scan took
+            // 13.8 ms instead of 12.3 at 1M, docs/performance.md).
+            const Held fat = fat_[p];
             held_[p] = held;
-            if ((state & kGone) != 0 || !inside(held, fat_[p])) {
+            if ((state & kGone) != 0 || !inside(held, fat)) {
                 found.fresh.push_back(static_cast<Position>(p));
                 found.newly_moved += (state & kMoved) == 0 ? 1U : 0U;
             }
