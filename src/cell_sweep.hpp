@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "assert.hpp"
-#include "box_store.hpp"
+#include "id_index.hpp"
 #include "cell_scratch.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"

@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "assert.hpp"
-#include "box_store.hpp"
+#include "id_index.hpp"
 #include "cell_sweep.hpp"
 #include "cut_tree.hpp"
 #include "growth.hpp"
@@ -73,18 +73,9 @@ public:
         listed_ = std::min(listed_, n);
     }
 
-    /// Reports every overlapping pair once: report.append(pairs in a < b order) for runs,
-    /// report(id_a, id_b) for single pairs.
-    template <class Report>
-    void detect(const BoxStore<Real, Dim>& store, const WorldSettings& settings, Report& report,
-                DetectStats& stats)
-        requires std::same_as<Real, Input>
-    {
-        detect(store.boxes(), store.ids(), settings, report, stats);
-    }
-
-    /// The same over boxes the caller keeps: box `slot` of `input` under id ids[slot], or under
-    /// id `slot` where `ids` is empty. Where the pipeline holds floats of double input, the held
+    /// Reports every overlapping pair of `input` once (report.append(pairs in a < b order) for
+    /// runs, report(id_a, id_b) for single pairs): box `slot` of `input` under id ids[slot], or
+    /// under id `slot` where `ids` is empty. Where the pipeline holds floats of double input, the held
     /// boxes are shifted by set_origin()'s origin and rounded (held_box.hpp), and each pair they
     /// cannot settle is tested again on `input`.
     template <class Report>
