@@ -1,4 +1,4 @@
-// The axial cut's quantiles (src/quantile_select.hpp): recursive selection against the radix
+// The axial cut's quantiles (src/cuts/quantile_select.hpp): recursive selection against the radix
 // sort, on fresh keys at every iteration. Repeating one input would let the branch predictor
 // learn the selection's comparisons and flatter it several times over, which is not what a cut
 // sees: each group's keys are new to it.
@@ -16,7 +16,7 @@
 #include <random>
 #include <vector>
 
-#include "quantile_select.hpp"
+#include "cuts/quantile_select.hpp"
 
 namespace {
 

@@ -8,11 +8,11 @@
 #include <type_traits>
 #include <vector>
 
-#include "held_cut_pipeline.hpp"
-#include "pair_output.hpp"
-#include "scene_bounds.hpp"
-#include "settings_check.hpp"
-#include "skin_list.hpp"
+#include "cuts/held_cut_pipeline.hpp"
+#include "core/pair_output.hpp"
+#include "core/scene_bounds.hpp"
+#include "core/settings_check.hpp"
+#include "skin/skin_list.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
 #include "smb/settings.hpp"

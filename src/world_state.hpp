@@ -13,12 +13,12 @@
 #include <utility>
 #include <vector>
 
-#include "box_store.hpp"
-#include "pair_output.hpp"
-#include "settings_check.hpp"
-#include "held_cut_pipeline.hpp"
-#include "paper_pipeline.hpp"
-#include "scene_bounds.hpp"
+#include "core/box_store.hpp"
+#include "core/pair_output.hpp"
+#include "core/settings_check.hpp"
+#include "cuts/held_cut_pipeline.hpp"
+#include "paper/paper_pipeline.hpp"
+#include "core/scene_bounds.hpp"
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/settings.hpp"

@@ -1,10 +1,10 @@
-// The axial cut (src/axial_cut.hpp): equal counts, never between equal coordinates.
+// The axial cut (src/paper/axial_cut.hpp): equal counts, never between equal coordinates.
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "axial_cut.hpp"
+#include "paper/axial_cut.hpp"
 
 namespace smb::detail {
 namespace {

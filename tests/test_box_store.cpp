@@ -1,4 +1,4 @@
-// The box store's compaction (src/box_store.hpp, src/slot_renumbering.hpp): under random
+// The box store's compaction (src/core/box_store.hpp, src/core/slot_renumbering.hpp): under random
 // inserts and removals, with any number of slots listed by a pipeline, every old slot is mapped
 // to the slot its box now has (or to none, removed), the listed survivors keep the first slots,
 // the arrivals follow in their order, and only as many listed boxes move as were removed.
@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "box_store.hpp"
+#include "core/box_store.hpp"
 
 namespace smb::detail {
 namespace {

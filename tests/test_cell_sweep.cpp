@@ -1,4 +1,4 @@
-// The cell check (src/cell_sweep.hpp) both ways: testing every pair and sweeping on x report the
+// The cell check (src/cuts/cell_sweep.hpp) both ways: testing every pair and sweeping on x report the
 // same pairs and the same home boxes as a direct test under the lower-corner rule, at every
 // size around the limit between them, in float and double, with the boxes registered in any
 // order.
@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "cell_sweep.hpp"
+#include "cuts/cell_sweep.hpp"
 
 namespace smb::detail {
 namespace {
@@ -205,7 +205,7 @@ namespace {
 
 /// append_set_lanes<Lanes> for every pattern of lane bits: the set lanes' values, in lane order,
 /// and the end just past them. Runs the eight lanes only where they can run (AVX2).
-// The scratch of a cell (src/cell_scratch.hpp): every array on a cache line of its own, none
+// The scratch of a cell (src/cuts/cell_scratch.hpp): every array on a cache line of its own, none
 // overlapping another, the hit list after the columns; and for a usual cell (up to 80 boxes,
 // 256 hits) no hit shares its place modulo 4 KiB with what the pair test's rows load
 // (the lower-corner bits and the coordinates), so that no store of a hit holds up those loads.

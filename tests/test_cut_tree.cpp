@@ -1,4 +1,4 @@
-// The persistent cut planes (src/cut_tree.hpp): equal-count cuts, exact on small groups and
+// The persistent cut planes (src/cuts/cut_tree.hpp): equal-count cuts, exact on small groups and
 // from an evenly spaced sample on large ones, and the location of values against them.
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "cut_tree.hpp"
+#include "cuts/cut_tree.hpp"
 
 namespace smb::detail {
 namespace {

@@ -1,4 +1,4 @@
-// The id index (src/id_index.hpp): small ids in an array, the others in a hash map, checked
+// The id index (src/core/id_index.hpp): small ids in an array, the others in a hash map, checked
 // against std::map under random inserts, moves and erases of dense, sparse and mixed ids.
 
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "id_index.hpp"
+#include "core/id_index.hpp"
 
 namespace smb::detail {
 namespace {

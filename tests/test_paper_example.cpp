@@ -9,12 +9,12 @@
 #include <set>
 #include <vector>
 
-#include "axial_cut.hpp"
-#include "cell_lists.hpp"
-#include "global_local_map.hpp"
-#include "mask_array.hpp"
-#include "shell_sort.hpp"
-#include "singular_regroup.hpp"
+#include "paper/axial_cut.hpp"
+#include "paper/cell_lists.hpp"
+#include "paper/global_local_map.hpp"
+#include "paper/mask_array.hpp"
+#include "paper/shell_sort.hpp"
+#include "paper/singular_regroup.hpp"
 
 namespace smb::detail {
 namespace {

@@ -1,4 +1,4 @@
-// The quantiles of the axial cut (src/quantile_select.hpp): the radix sort and the recursive
+// The quantiles of the axial cut (src/cuts/quantile_select.hpp): the radix sort and the recursive
 // selection must return the key of every rank floor(j n / k) exactly, as a full sort does, for
 // any keys: negatives, signed zeros, long runs of equal keys, the ends of the range.
 
@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "quantile_select.hpp"
+#include "cuts/quantile_select.hpp"
 
 namespace smb::detail {
 namespace {

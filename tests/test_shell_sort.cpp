@@ -1,4 +1,4 @@
-// The diminishing increment sort (src/shell_sort.hpp) and its adaptive increment rule.
+// The diminishing increment sort (src/paper/shell_sort.hpp) and its adaptive increment rule.
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "shell_sort.hpp"
+#include "paper/shell_sort.hpp"
 
 namespace smb::detail {
 namespace {

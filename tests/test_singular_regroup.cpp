@@ -1,4 +1,4 @@
-// The singular-item regrouping (src/singular_regroup.hpp) on random lists: every item lands in
+// The singular-item regrouping (src/paper/singular_regroup.hpp) on random lists: every item lands in
 // its parent's section, normal items keep their order, arrivals come in sorted.
 
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "singular_regroup.hpp"
+#include "paper/singular_regroup.hpp"
 
 namespace smb::detail {
 namespace {

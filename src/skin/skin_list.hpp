@@ -33,12 +33,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "growth.hpp"
-#include "held_box.hpp"
-#include "id_index.hpp"
-#include "ordered_rounds.hpp"
-#include "persistent_cut_pipeline.hpp"
-#include "prefetch.hpp"
+#include "core/growth.hpp"
+#include "core/held_box.hpp"
+#include "core/id_index.hpp"
+#include "core/ordered_rounds.hpp"
+#include "cuts/persistent_cut_pipeline.hpp"
+#include "core/prefetch.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"

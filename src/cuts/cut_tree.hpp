@@ -25,7 +25,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "quantile_select.hpp"
+#include "cuts/quantile_select.hpp"
 
 namespace smb::detail {
 

@@ -34,9 +34,9 @@
 #include <span>
 #include <vector>
 
-#include "assert.hpp"
-#include "id_index.hpp"
-#include "cell_scratch.hpp"
+#include "core/assert.hpp"
+#include "core/id_index.hpp"
+#include "cuts/cell_scratch.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 

@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-#include "axis_entry.hpp"
+#include "paper/axis_entry.hpp"
 
 namespace smb::detail {
 

@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <span>
 
-#include "axis_entry.hpp"
+#include "paper/axis_entry.hpp"
 
 namespace smb::detail {
 

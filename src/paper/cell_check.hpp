@@ -22,9 +22,9 @@
 #include <span>
 #include <vector>
 
-#include "axis_entry.hpp"
-#include "global_local_map.hpp"
-#include "mask_array.hpp"
+#include "paper/axis_entry.hpp"
+#include "paper/global_local_map.hpp"
+#include "paper/mask_array.hpp"
 #include "smb/box.hpp"
 
 namespace smb::detail {

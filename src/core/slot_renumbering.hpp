@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "id_index.hpp"
+#include "core/id_index.hpp"
 
 namespace smb::detail {
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "growth.hpp"
-#include "id_index.hpp"
-#include "slot_renumbering.hpp"
+#include "core/growth.hpp"
+#include "core/id_index.hpp"
+#include "core/slot_renumbering.hpp"
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
 #include "smb/pair.hpp"

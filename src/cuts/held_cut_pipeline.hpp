@@ -12,10 +12,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "assert.hpp"
-#include "persistent_cut_pipeline.hpp"
-#include "scene_bounds.hpp"
-#include "slot_renumbering.hpp"
+#include "core/assert.hpp"
+#include "cuts/persistent_cut_pipeline.hpp"
+#include "core/scene_bounds.hpp"
+#include "core/slot_renumbering.hpp"
 #include "smb/box.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/settings.hpp"

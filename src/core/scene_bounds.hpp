@@ -10,7 +10,7 @@
 #include <limits>
 #include <span>
 
-#include "box_store.hpp"
+#include "core/box_store.hpp"
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
 

@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "axis_entry.hpp"
+#include "paper/axis_entry.hpp"
 #include "smb/box.hpp"
 
 namespace smb::detail {

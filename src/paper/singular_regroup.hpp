@@ -17,8 +17,8 @@
 #include <span>
 #include <vector>
 
-#include "axial_cut.hpp"
-#include "axis_entry.hpp"
+#include "paper/axial_cut.hpp"
+#include "paper/axis_entry.hpp"
 
 namespace smb::detail {
 
