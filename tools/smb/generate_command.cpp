@@ -4,6 +4,7 @@
 
 #include <iostream>
 
+#include "counted.hpp"
 #include "file_streams.hpp"
 #include "scene_csv.hpp"
 
@@ -50,10 +51,9 @@ int GenerateCommand::run() const {
     output.commit();
     if (!output.is_standard_output()) {
         std::cerr << fmt::format(
-            "smb generate: {} frames of {}D boxes, N {} -> {}, cube side {:.6g}, "
-            "written to {}\n",
-            environment_.steps, environment_.dimension, environment_.box_count, final_count,
-            cube_side, output_);
+            "smb generate: {} of {}D boxes, N {} -> {}, cube side {:.6g}, written to {}\n",
+            counted(environment_.steps, "frame"), environment_.dimension, environment_.box_count,
+            final_count, cube_side, output_);
     }
     return 0;
 }
