@@ -1,5 +1,6 @@
 // How smb writes numbers in what it tells the user: a count takes the singular noun only when it
-// is 1 ("1 frame", "2 frames"), and no number prints in std::to_string's form ("0.100000").
+// is 1 ("1 frame", "2 frames"), and a number reads as the user wrote it or in its shortest form
+// ("not 0.1", never std::to_string's "0.100000").
 
 #include <gtest/gtest.h>
 
@@ -56,6 +57,43 @@ TEST(CliMessages, RunSummaryCountsStepsInTheSingularForOne) {
         EXPECT_FALSE(std::regex_search(text, std::regex(R"(\b1 (steps|frames|pairs|candidates|boxes)\b)")))
             << text;
     }
+}
+
+TEST(CliMessages, RejectedValuesReadAsTheUserWroteThem) {
+    TempFolder folder;
+    struct Case {
+        std::vector<std::string> arguments;
+        std::string expected;
+    };
+    const std::vector<Case> cases{
+        {{"run", "-H", "0.1"}, "--size-ratio: must be in [1, 1000000000000], not 0.1"},
+        {{"run", "-L", "1.5"}, "--update-factor: must be in [0, 1), not 1.5"},
+        {{"run", "-E", "0"}, "--density: must be greater than 0, not 0"},
+        {{"run", "--skin", "-0.25"}, "--skin: must be at least 0, not -0.25"},
+        {{"run", "-s", "0"}, "--steps: must be at least 1, not 0"},
+        {{"run", "-n", "-5"}, "--boxes: must be at least 0, not -5"},
+        {{"generate", "--side", "-3"}, "--side: must be greater than 0, not -3"},
+        {{"pairs", "--pairs-in-memory", "1"}, "--pairs-in-memory: must be at least 2, not 1"},
+        {{"run", "-L", "much"}, "--update-factor: must be a number in [0, 1), not 'much'"},
+    };
+    for (const Case& bad : cases) {
+        const auto result = run_smb(folder, bad.arguments);
+        EXPECT_NE(result.status, 0);
+        EXPECT_TRUE(contains(result.err, bad.expected)) << bad.expected << '\n' << result.err;
+        EXPECT_FALSE(has_fixed_six_decimals(result.err)) << result.err;
+    }
+}
+
+TEST(CliMessages, TooSmallCubeReadsInShortestForm) {
+    TempFolder folder;
+    const auto side = run_smb(folder, {"generate", "-n", "3", "-s", "1", "--side", "0.5"});
+    EXPECT_EQ(side.status, 1);
+    EXPECT_TRUE(contains(side.err, "the cube side x = 0.5 is smaller than the largest box side b = 1"))
+        << side.err;
+    const auto density = run_smb(folder, {"run", "-n", "1", "-E", "0.9"});
+    EXPECT_EQ(density.status, 1);
+    EXPECT_TRUE(contains(density.err, "the cube side x = 0.7250209180559003 is smaller")) << density.err;
+    EXPECT_FALSE(has_fixed_six_decimals(side.err + density.err));
 }
 
 TEST(CliMessages, OutputOfNormalRunsHasNoSixDecimalNumbers) {

@@ -1,11 +1,11 @@
 #include "pairs_command.hpp"
 
-#include <limits>
 #include <span>
 #include <vector>
 
 #include "file_streams.hpp"
 #include "frame_diff.hpp"
+#include "option_checks.hpp"
 #include "pair_csv.hpp"
 #include "scene_csv.hpp"
 #include "spilling_pair_sorter.hpp"
@@ -68,7 +68,7 @@ PairsCommand::PairsCommand(CLI::App& parent)
     app_->add_option("--pairs-in-memory", pairs_in_memory_,
                      "most pairs of one frame held in memory (16 bytes each); a frame with more "
                      "is sorted through temporary files")
-        ->check(CLI::Range(std::size_t{2}, std::numeric_limits<std::size_t>::max()))
+        ->check(at_least(2))
         ->capture_default_str();
 }
 
