@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <exception>
 #include <iostream>
 
 #include "counted.hpp"
@@ -35,7 +36,10 @@ GenerateCommand::GenerateCommand(CLI::App& parent)
     environment_.box_count = 1000;
     environment_.steps = 10;
     add_environment_options(*app_, environment_);
-    app_->add_option("-o,--output", output_, "scene CSV to write ('-' for standard output)")
+    app_->add_option("-o,--output", output_,
+                     "scene CSV to write ('-' for standard output); a file is replaced only on "
+                     "success, a symbolic link's target is written, a FIFO or device is written "
+                     "into")
         ->capture_default_str();
 }
 
@@ -43,10 +47,15 @@ int GenerateCommand::run() const {
     io::OutputFile output(output_);
     std::size_t final_count = 0;
     double cube_side = 0;
-    if (environment_.dimension == 2) {
-        write_environment<2>(environment_, output.stream(), final_count, cube_side);
-    } else {
-        write_environment<3>(environment_, output.stream(), final_count, cube_side);
+    try {
+        if (environment_.dimension == 2) {
+            write_environment<2>(environment_, output.stream(), final_count, cube_side);
+        } else {
+            write_environment<3>(environment_, output.stream(), final_count, cube_side);
+        }
+    } catch (const std::exception&) {
+        output.throw_if_failed();  // a failed write is said with its destination
+        throw;
     }
     output.commit();
     if (!output.is_standard_output()) {

@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "exit_status.hpp"
 #include "option_checks.hpp"
 #include "peak_memory.hpp"
 #include "progress_bar.hpp"
@@ -178,7 +179,7 @@ int RunCommand::run_in() const {
     } else {
         print_text_summary(run, std::cout);
     }
-    return run.check.ok() ? 0 : mismatch_exit_status;
+    return run.check.ok() ? exit_status::success : exit_status::mismatch;
 }
 
 }  // namespace smb::cli
