@@ -74,6 +74,7 @@ TEST(CliArguments, EveryArgumentErrorGivesTheDocumentedStatus) {
         {"run", "--dim", "4"},                          // not one of the choices
         {"run", "-L", "1.5"},                           // out of range
         {"run", "-n", "-5"},                            // negative count
+        {"run", "--threads", "2000"},                   // beyond WorldSettings' 1024
         {"run", "-n", "100", "-s", "2", "--skin", "0.1"},  // checked once parsed: needs a detector
     };
     for (const auto& arguments : bad_arguments) {

@@ -72,6 +72,7 @@ TEST(CliMessages, RejectedValuesReadAsTheUserWroteThem) {
         {{"run", "--skin", "-0.25"}, "--skin: must be at least 0, not -0.25"},
         {{"run", "-s", "0"}, "--steps: must be at least 1, not 0"},
         {{"run", "-n", "-5"}, "--boxes: must be at least 0, not -5"},
+        {{"run", "--threads", "2000"}, "--threads: must be in [0, 1024], not 2000"},
         {{"generate", "--side", "-3"}, "--side: must be greater than 0, not -3"},
         {{"pairs", "--pairs-in-memory", "1"}, "--pairs-in-memory: must be at least 2, not 1"},
         {{"run", "-L", "much"}, "--update-factor: must be a number in [0, 1), not 'much'"},
@@ -94,6 +95,14 @@ TEST(CliMessages, TooSmallCubeReadsInShortestForm) {
     EXPECT_EQ(density.status, 1);
     EXPECT_TRUE(contains(density.err, "the cube side x = 0.7250209180559003 is smaller")) << density.err;
     EXPECT_FALSE(has_fixed_six_decimals(side.err + density.err));
+
+    const auto empty = run_smb(folder, {"generate", "-n", "0", "-s", "1"});
+    EXPECT_EQ(empty.status, 1);
+    EXPECT_TRUE(contains(empty.err, "an empty scene (N = 0) has no cube side at a density: give --side"))
+        << empty.err;
+    const auto empty_with_side = run_smb(folder, {"generate", "-n", "0", "-s", "2", "--side", "5"});
+    EXPECT_EQ(empty_with_side.status, 0) << empty_with_side.err;
+    EXPECT_EQ(empty_with_side.out, "frame,id,xmin,ymin,zmin,xmax,ymax,zmax\n");
 }
 
 TEST(CliMessages, OutputOfNormalRunsHasNoSixDecimalNumbers) {

@@ -32,6 +32,8 @@ void EnvironmentOptions::check_cube_side() const {
                                                      largest_side / size_ratio, largest_side,
                                                      dimension);
     if (side >= largest_side) return;
+    if (!side_given && box_count == 0)
+        throw std::invalid_argument("an empty scene (N = 0) has no cube side at a density: give --side");
     const std::string side_text =
         side_given ? side_option->results().front() : fmt::format("{}", side);
     throw std::invalid_argument(fmt::format(

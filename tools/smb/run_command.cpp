@@ -69,9 +69,11 @@ RunCommand::RunCommand(CLI::App& parent)
                      "boxes the axial cuts aim to put in one cell (WorldSettings)")
         ->check(at_least(1))
         ->capture_default_str();
+    // WorldSettings::threads takes at most 1024 (include/smb/settings.hpp); said here as an
+    // argument error rather than as the library's.
     app_->add_option("--threads", threads_,
                      "threads detect() may use; 0 for as many as OpenMP offers (WorldSettings)")
-        ->check(not_negative())
+        ->check(in_closed_range(0, 1024))
         ->capture_default_str();
     app_->add_option("--pipeline", pipeline_,
                      "persistent: the default pipeline (persistent cuts); paper: the paper's "
