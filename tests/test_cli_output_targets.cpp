@@ -84,6 +84,20 @@ TEST(CliOutputTargets, DanglingLinkCreatesItsTarget) {
     EXPECT_EQ(std::distance(fs::directory_iterator(folder / "out"), {}), 1);
 }
 
+TEST(CliOutputTargets, LoopOfLinksIsRefused) {
+    TempFolder folder;
+    write_file(folder / "scene.csv", scene_2d);
+    fs::create_symlink("b.csv", folder / "a.csv");
+    fs::create_symlink("a.csv", folder / "b.csv");
+    const auto result = run_smb(folder, pairs_into("a.csv"));
+    EXPECT_EQ(result.status, 1);
+    EXPECT_NE(result.err.find("cannot write 'a.csv': too many symbolic links"), std::string::npos)
+        << result.err;
+    EXPECT_TRUE(is_link(folder / "a.csv"));
+    EXPECT_TRUE(is_link(folder / "b.csv"));
+    EXPECT_EQ(folder.entry_count(), 3u);
+}
+
 TEST(CliOutputTargets, FailedRunThroughALinkKeepsTheTarget) {
     TempFolder folder;
     write_file(folder / "scene.csv", scene_2d + "1,1,0,0,1\n");
