@@ -161,4 +161,12 @@ void flush_standard_output() {
     }
 }
 
+void close_standard_output() {
+    flush_standard_output();
+    errno = 0;
+    // EBADF: standard output was closed before the program started and nothing was written.
+    if (::close(STDOUT_FILENO) != 0 && errno != EBADF)
+        throw std::runtime_error(std::string("closing standard output failed: ") + std::strerror(errno));
+}
+
 }  // namespace smb::io

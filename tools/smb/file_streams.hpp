@@ -62,4 +62,8 @@ private:
 /// disk, a closed pipe, /dev/full), so that the exit status can say so.
 void flush_standard_output();
 
+/// Flushes and closes standard output, for the end of the program: a file system may report a
+/// failed write only when the file is closed. Throws std::runtime_error as flush_standard_output.
+void close_standard_output();
+
 }  // namespace smb::io

@@ -76,14 +76,14 @@ int main(int argc, char** argv) {
         } catch (const CLI::ParseError& error) {
             if (error.get_exit_code() != 0) return argument_error(app, error.what());
             status = app.exit(error);  // --help or --version, printed on standard output
-            smb::io::flush_standard_output();
+            smb::io::close_standard_output();
             return status;
         }
         if (pairs.selected()) status = pairs.run();
         if (generate.selected()) status = generate.run();
         if (run.selected()) status = run.run();
         // What was printed must have reached its destination, or the run failed.
-        smb::io::flush_standard_output();
+        smb::io::close_standard_output();
     } catch (const CLI::Error& error) {
         // A check of the arguments together, made once they are parsed.
         return argument_error(app, error.what());
