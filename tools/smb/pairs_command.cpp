@@ -1,8 +1,10 @@
 #include "pairs_command.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <exception>
+#include <iostream>
 #include <span>
 #include <vector>
 
@@ -86,6 +88,11 @@ PairsCommand::PairsCommand(CLI::App& parent)
 }
 
 int PairsCommand::run() const {
+    // Run without --input from a terminal, pairs would wait for typed input without a word.
+    if (input_ == "-" && ::isatty(STDIN_FILENO) == 1) {
+        std::cerr << "smb pairs: reading a scene CSV from standard input (end it with Ctrl-D; "
+                     "--input FILE reads a file)\n";
+    }
     io::InputFile input(input_);
     io::SceneReader reader(input.stream(), input.name());
     io::OutputFile output(output_);
