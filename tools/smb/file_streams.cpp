@@ -104,8 +104,9 @@ OutputFile::OutputFile(const std::string& path) : path_(path) {
     name.push_back('\0');
     const int descriptor = ::mkstemp(name.data());
     if (descriptor < 0) throw system_error("cannot create a file in the folder of", path);
-    // A file that is replaced keeps its permissions; a new one gets what open() would give it.
-    ::fchmod(descriptor, exists ? static_cast<mode_t>(status.st_mode & 07777) : default_file_mode());
+    // A file that is replaced keeps its permissions (not set-id bits: it is data); a new one gets
+    // what open() would give it.
+    ::fchmod(descriptor, exists ? static_cast<mode_t>(status.st_mode & 0777) : default_file_mode());
     ::close(descriptor);
     temporary_path_ = name.data();
     file_ = std::make_unique<std::ofstream>(temporary_path_, std::ios::binary | std::ios::trunc);
