@@ -18,13 +18,15 @@ endif()
 # End to end: the built binary on small scenes in tests/data/cli.
 if(TARGET smb_cli)
   find_package(nlohmann_json REQUIRED)
-  foreach(name test_cli_pairs test_cli_generate_run)
+  foreach(name test_cli_pairs test_cli_generate_run test_cli_output_targets test_cli_arguments
+               test_cli_messages)
     smb_add_gtest(NAME ${name}
       SOURCES ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp
       LIBS smb_io smb_workload nlohmann_json::nlohmann_json)
     target_compile_definitions(${name} PRIVATE
       SMB_CLI_PATH="$<TARGET_FILE:smb_cli>"
-      SMB_CLI_DATA_DIR="${CMAKE_CURRENT_LIST_DIR}/data/cli")
+      SMB_CLI_DATA_DIR="${CMAKE_CURRENT_LIST_DIR}/data/cli"
+      SMB_CLI_README="${PROJECT_SOURCE_DIR}/tools/smb/README.md")
     add_dependencies(${name} smb_cli)
   endforeach()
 

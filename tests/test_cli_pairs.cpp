@@ -2,9 +2,16 @@
 // files and with brute force on generated scenes; error exits, messages and leftover files.
 
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <pty.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "pair_csv.hpp"
@@ -161,6 +168,50 @@ TEST(CliPairs, MissingInputFile) {
     EXPECT_EQ(result.status, 1);
     EXPECT_NE(result.err.find("absent.csv"), std::string::npos) << result.err;
     EXPECT_EQ(folder.entry_count(), 0u);
+}
+
+/// Reads what arrives on `descriptor` within `limit`, until `wanted` has been seen.
+std::string read_until(int descriptor, const std::string& wanted, std::chrono::seconds limit) {
+    std::string seen;
+    const auto deadline = std::chrono::steady_clock::now() + limit;
+    while (seen.find(wanted) == std::string::npos && std::chrono::steady_clock::now() < deadline) {
+        pollfd ready{descriptor, POLLIN, 0};
+        if (::poll(&ready, 1, 100) <= 0) continue;
+        char buffer[256];
+        const ssize_t count = ::read(descriptor, buffer, sizeof buffer);
+        if (count <= 0) break;
+        seen.append(buffer, static_cast<std::size_t>(count));
+    }
+    return seen;
+}
+
+// `smb pairs` without --input on a terminal would otherwise wait for typed input in silence.
+TEST(CliPairs, ReadingATerminalSaysSo) {
+    int terminal = -1;
+    const pid_t child = ::forkpty(&terminal, nullptr, nullptr, nullptr);
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        ::execl(SMB_CLI_PATH, SMB_CLI_PATH, "pairs", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    const std::string said = read_until(terminal, "Ctrl-D", std::chrono::seconds(10));
+    EXPECT_NE(said.find("smb pairs: reading a scene CSV from standard input"), std::string::npos)
+        << said;
+    // End of input at the start of a line: the empty input is refused as an empty file.
+    ASSERT_EQ(::write(terminal, "\x04", 1), 1);
+    const std::string rest = read_until(terminal, "empty file", std::chrono::seconds(10));
+    int status = 0;
+    for (int waited = 0; ::waitpid(child, &status, WNOHANG) == 0; ++waited) {
+        if (waited == 1000) {
+            ::kill(child, SIGKILL);
+            ::waitpid(child, &status, 0);
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ::close(terminal);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << said << rest;
+    EXPECT_NE(rest.find("<stdin>:1: empty file"), std::string::npos) << rest;
 }
 
 TEST(CliPairs, UnknownOptionIsRejected) {

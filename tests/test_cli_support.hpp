@@ -72,10 +72,11 @@ inline std::string shell_quoted(const std::string& text) {
 }
 
 /// Runs smb with `arguments` in `folder` (its working directory), standard input from
-/// `stdin_path` when given (else /dev/null), and captures both output streams.
-inline CliResult run_smb(const TempFolder& folder, const std::vector<std::string>& arguments,
-                         const fs::path& stdin_path = {}) {
-    const fs::path out_path = folder / ".stdout";
+/// `stdin_path` when given (else /dev/null), standard output into `stdout_path` when given (else
+/// captured), and captures standard error.
+inline CliResult run_smb_with(const TempFolder& folder, const std::vector<std::string>& arguments,
+                              const fs::path& stdin_path, const fs::path& stdout_path) {
+    const fs::path out_path = stdout_path.empty() ? folder / ".stdout" : stdout_path;
     const fs::path err_path = folder / ".stderr";
     // Built by appending only: GCC 12 misreads "literal" + std::string temporaries (-Wrestrict).
     std::string command = "cd ";
@@ -95,11 +96,20 @@ inline CliResult run_smb(const TempFolder& folder, const std::vector<std::string
     const int raw = std::system(command.c_str());
     CliResult result;
     result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    result.out = read_file(out_path);
+    if (stdout_path.empty()) {
+        result.out = read_file(out_path);
+        fs::remove(out_path);
+    }
     result.err = read_file(err_path);
-    fs::remove(out_path);
     fs::remove(err_path);
     return result;
+}
+
+/// Runs smb with `arguments` in `folder` (its working directory), standard input from
+/// `stdin_path` when given (else /dev/null), and captures both output streams.
+inline CliResult run_smb(const TempFolder& folder, const std::vector<std::string>& arguments,
+                         const fs::path& stdin_path = {}) {
+    return run_smb_with(folder, arguments, stdin_path, {});
 }
 
 }  // namespace smb::cli_test

@@ -22,7 +22,12 @@ struct EnvironmentOptions {
 
     CLI::Option* side_option = nullptr;
 
+    /// The environment's parameters; throws std::invalid_argument when the cube would be narrower
+    /// than the largest box.
     [[nodiscard]] workload::EnvironmentParams params() const;
+
+private:
+    void check_cube_side() const;
 };
 
 /// Adds --dim, -n, --density | --side, --size-ratio, --update-factor, --steps and --seed to

@@ -25,9 +25,14 @@ private:
     std::string name_;
 };
 
-/// Writes to standard output for "-"; otherwise to a temporary file in the folder of `path`,
-/// renamed onto `path` by commit(). An output that failed half way is removed by the destructor,
-/// so a file at `path` is always complete (or the previous one, untouched).
+/// Writes to standard output for "-", otherwise to what `path` names, symlinks followed to their
+/// final target (a relative link read from the link's folder; the target of a dangling link is
+/// created), so that a link stays a link and its target gets the content.
+///  - A regular file, or nothing yet: the output goes to a temporary file in the target's folder,
+///    renamed onto the target by commit(). An output that failed half way is removed by the
+///    destructor, so a file at the target is always complete (or the previous one, untouched).
+///  - Anything else that exists (a FIFO, a character device such as /dev/null): written straight
+///    through, never replaced.
 class OutputFile {
 public:
     explicit OutputFile(const std::string& path);
@@ -38,15 +43,27 @@ public:
     [[nodiscard]] std::ostream& stream() noexcept { return *stream_; }
     [[nodiscard]] bool is_standard_output() const noexcept { return file_ == nullptr; }
 
-    /// Flushes and, for a file, moves it into place. Throws std::runtime_error on failure.
+    /// Flushes and, for a regular file, moves it into place. Throws std::runtime_error on failure.
     void commit();
+    /// Throws std::runtime_error naming the destination (and the system's reason) if a write to
+    /// stream() failed; call it where a writer gave up, so that the message says where.
+    void throw_if_failed() const;
 
 private:
-    std::string path_;
-    std::string temporary_path_;
+    std::string path_;            ///< as the user gave it, for messages
+    std::string target_;          ///< `path_` with its symlinks followed
+    std::string temporary_path_;  ///< empty when written straight through
     std::unique_ptr<std::ofstream> file_;
     std::ostream* stream_;
     bool committed_ = false;
 };
+
+/// Flushes standard output; throws std::runtime_error when what was written could not be (a full
+/// disk, a closed pipe, /dev/full), so that the exit status can say so.
+void flush_standard_output();
+
+/// Flushes and closes standard output, for the end of the program: a file system may report a
+/// failed write only when the file is closed. Throws std::runtime_error as flush_standard_output.
+void close_standard_output();
 
 }  // namespace smb::io

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <exception>
 #include <iostream>
 
+#include "counted.hpp"
 #include "file_streams.hpp"
 #include "scene_csv.hpp"
 
@@ -34,7 +36,10 @@ GenerateCommand::GenerateCommand(CLI::App& parent)
     environment_.box_count = 1000;
     environment_.steps = 10;
     add_environment_options(*app_, environment_);
-    app_->add_option("-o,--output", output_, "scene CSV to write ('-' for standard output)")
+    app_->add_option("-o,--output", output_,
+                     "scene CSV to write ('-' for standard output); a file is replaced only on "
+                     "success, a symbolic link's target is written, a FIFO or device is written "
+                     "into")
         ->capture_default_str();
 }
 
@@ -42,18 +47,22 @@ int GenerateCommand::run() const {
     io::OutputFile output(output_);
     std::size_t final_count = 0;
     double cube_side = 0;
-    if (environment_.dimension == 2) {
-        write_environment<2>(environment_, output.stream(), final_count, cube_side);
-    } else {
-        write_environment<3>(environment_, output.stream(), final_count, cube_side);
+    try {
+        if (environment_.dimension == 2) {
+            write_environment<2>(environment_, output.stream(), final_count, cube_side);
+        } else {
+            write_environment<3>(environment_, output.stream(), final_count, cube_side);
+        }
+    } catch (const std::exception&) {
+        output.throw_if_failed();  // a failed write is said with its destination
+        throw;
     }
     output.commit();
     if (!output.is_standard_output()) {
         std::cerr << fmt::format(
-            "smb generate: {} frames of {}D boxes, N {} -> {}, cube side {:.6g}, "
-            "written to {}\n",
-            environment_.steps, environment_.dimension, environment_.box_count, final_count,
-            cube_side, output_);
+            "smb generate: {} of {}D boxes, N {} -> {}, cube side {:.6g}, written to {}\n",
+            counted(environment_.steps, "frame"), environment_.dimension, environment_.box_count,
+            final_count, cube_side, output_);
     }
     return 0;
 }

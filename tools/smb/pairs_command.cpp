@@ -1,11 +1,16 @@
 #include "pairs_command.hpp"
 
-#include <limits>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <exception>
+#include <iostream>
 #include <span>
 #include <vector>
 
 #include "file_streams.hpp"
 #include "frame_diff.hpp"
+#include "option_checks.hpp"
 #include "pair_csv.hpp"
 #include "scene_csv.hpp"
 #include "spilling_pair_sorter.hpp"
@@ -62,24 +67,44 @@ PairsCommand::PairsCommand(CLI::App& parent)
     app_->add_option("-i,--input", input_, "scene CSV to read ('-' for standard input)")
         ->capture_default_str();
     app_->add_option("-o,--output", output_,
-                     "pair CSV to write ('-' for standard output); written to a temporary file "
-                     "and renamed only on success")
+                     "pair CSV to write ('-' for standard output); a file is replaced only on "
+                     "success, a symbolic link's target is written, a FIFO or device is written "
+                     "into")
         ->capture_default_str();
     app_->add_option("--pairs-in-memory", pairs_in_memory_,
                      "most pairs of one frame held in memory (16 bytes each); a frame with more "
                      "is sorted through temporary files")
-        ->check(CLI::Range(std::size_t{2}, std::numeric_limits<std::size_t>::max()))
+        ->check(at_least(2))
         ->capture_default_str();
+    app_->footer([] {
+        return fmt::format(
+            "Scene CSV: header {} (3D) or {} (2D); one row per box per frame, frame numbers "
+            "non-decreasing, an id once per frame; a skipped frame number is an empty frame.\n"
+            "Pair CSV: header frame,a,b; one row per overlapping pair (touching counts), a < b, "
+            "sorted by (frame, a, b).\n"
+            "A malformed line stops the run with 'file:line: problem' on standard error.\n",
+            io::scene_header(3), io::scene_header(2));
+    });
 }
 
 int PairsCommand::run() const {
+    // Run without --input from a terminal, pairs would wait for typed input without a word.
+    if (input_ == "-" && ::isatty(STDIN_FILENO) == 1) {
+        std::cerr << "smb pairs: reading a scene CSV from standard input (end it with Ctrl-D; "
+                     "--input FILE reads a file)\n";
+    }
     io::InputFile input(input_);
     io::SceneReader reader(input.stream(), input.name());
     io::OutputFile output(output_);
-    if (reader.dimension() == 2) {
-        write_pairs_of_every_frame<2>(reader, output.stream(), pairs_in_memory_);
-    } else {
-        write_pairs_of_every_frame<3>(reader, output.stream(), pairs_in_memory_);
+    try {
+        if (reader.dimension() == 2) {
+            write_pairs_of_every_frame<2>(reader, output.stream(), pairs_in_memory_);
+        } else {
+            write_pairs_of_every_frame<3>(reader, output.stream(), pairs_in_memory_);
+        }
+    } catch (const std::exception&) {
+        output.throw_if_failed();  // a failed write is said with its destination
+        throw;
     }
     output.commit();
     return 0;

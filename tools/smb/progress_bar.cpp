@@ -34,7 +34,8 @@ void ProgressBar::draw(std::size_t done, double last_step_seconds) {
     const std::string bar = std::string(static_cast<std::size_t>(filled), '#') +
                             std::string(static_cast<std::size_t>(bar_width - filled), '.');
     std::fputs(
-        fmt::format("\r[{}] {}/{} steps, last {:.3f} s ", bar, done, total_, last_step_seconds)
+        fmt::format("\r[{}] {}/{} {}, last {:.3f} s ", bar, done, total_,
+                    total_ == 1 ? "step" : "steps", last_step_seconds)
             .c_str(),
         stderr);
     std::fflush(stderr);

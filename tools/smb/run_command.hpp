@@ -15,10 +15,9 @@ public:
     explicit RunCommand(CLI::App& parent);
 
     [[nodiscard]] bool selected() const { return app_->parsed(); }
-    /// 0, or 2 when a checked step differs from the reference.
+    /// exit_status::success, or exit_status::mismatch when a checked step differs from the
+    /// reference.
     [[nodiscard]] int run() const;
-
-    static constexpr int mismatch_exit_status = 2;
 
 private:
     template <int Dim>

@@ -3,11 +3,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <numeric>
 #include <span>
 #include <string>
 #include <string_view>
+
+#include "counted.hpp"
 
 namespace smb::cli {
 
@@ -49,6 +52,9 @@ std::string duration_text(double seconds) {
     return seconds < 1 ? fmt::format("{:.3f} ms", seconds * 1e3) : fmt::format("{:.3f} s", seconds);
 }
 
+/// A median count (a double, halfway between two counts for an even number of steps) as a count.
+std::uint64_t rounded(double count) { return static_cast<std::uint64_t>(std::llround(count)); }
+
 std::string pair_text(const std::optional<Pair>& pair) {
     return pair ? fmt::format("({}, {})", pair->a, pair->b) : std::string("-");
 }
@@ -82,11 +88,10 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
         out << fmt::format("  {:<22}{}\n", label, text);
     };
     out << fmt::format(
-        "smb run: {}D, N {} -> {}, E {:g} (cube side {:.4g}), H {:g}, update factor {:g}, {} "
-        "steps, "
+        "smb run: {}D, N {} -> {}, E {:g} (cube side {:.4g}), H {:g}, update factor {:g}, {}, "
         "seed {}\n",
         run.dimension, run.initial_boxes, run.final_boxes, run.packing_density, run.cube_side,
-        run.size_ratio, run.update_factor, run.steps.size(), run.seed);
+        run.size_ratio, run.update_factor, counted(run.steps.size(), "step"), run.seed);
     line("pipeline", fmt::format("{}, {} thread{}", run.pipeline, run.threads, run.threads == 1 ? "" : "s"));
     if (!run.steps.empty()) {
         const StepRecord& build = run.steps.front();
@@ -96,7 +101,7 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
     }
     if (run.steps.size() >= 2) {
         const Spread detect = spread_after_build(run, detect_time);
-        line(fmt::format("detect ({} steps)", run.steps.size() - 1),
+        line(fmt::format("detect ({})", counted(run.steps.size() - 1, "step")),
              fmt::format("median {}, mean {}, min {}, max {} (CPU median {})",
                          duration_text(detect.median), duration_text(detect.mean), duration_text(detect.min),
                          duration_text(detect.max),
@@ -116,9 +121,10 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
         if (run.skin > 0) {
             const auto rebuilt = static_cast<std::size_t>(
                 std::count_if(run.steps.begin() + 1, run.steps.end(), [](const StepRecord& s) { return s.stats.skin_rebuilt; }));
-            line("skin", fmt::format("{:g}: rebuilt in {} of {} steps; median {:.0f} candidates, {:.0f} boxes refreshed",
-                                     run.skin, rebuilt, run.steps.size() - 1, median_after_build(run, skin_candidates),
-                                     median_after_build(run, skin_refreshed)));
+            line("skin", fmt::format("{:g}: rebuilt in {} of {}; median {}, {} refreshed", run.skin, rebuilt,
+                                     counted(run.steps.size() - 1, "step"),
+                                     counted(rounded(median_after_build(run, skin_candidates)), "candidate"),
+                                     counted(rounded(median_after_build(run, skin_refreshed)), "box", "boxes")));
         }
         line("world update (median)",
              duration_text(median_after_build(run, world_update_time)) + " in the batch calls");
@@ -140,15 +146,16 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
     if (!check.enabled) {
         line("check", "skipped");
     } else if (check.ok()) {
-        line("check", fmt::format("OK, {} step(s) equal the grid reference (last: step {}, "
-                                  "reference {})",
-                                  check.steps_checked, check.last_checked_step,
-                                  duration_text(check.last_reference_seconds)));
+        line("check", fmt::format("OK, {} the grid reference (last: step {}, reference {})",
+                                  check.steps_checked == 1 ? "1 step equals"
+                                                           : counted(check.steps_checked, "step") + " equal",
+                                  check.last_checked_step, duration_text(check.last_reference_seconds)));
     } else {
-        line("check", fmt::format("MISMATCH in {} of {} checked step(s); step {}: {} pairs "
-                                  "missing (e.g. {}), {} extra (e.g. {})",
-                                  check.mismatched_steps, check.steps_checked, check.first_bad_step,
-                                  check.missing_pairs, pair_text(check.example_missing),
+        line("check", fmt::format("MISMATCH in {} of {}; step {}: {} missing (e.g. {}), {} extra "
+                                  "(e.g. {})",
+                                  check.mismatched_steps, counted(check.steps_checked, "checked step"),
+                                  check.first_bad_step, counted(check.missing_pairs, "pair"),
+                                  pair_text(check.example_missing),
                                   check.extra_pairs, pair_text(check.example_extra)));
     }
 }
