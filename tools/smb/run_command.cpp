@@ -64,11 +64,11 @@ RunCommand::RunCommand(CLI::App& parent)
     add_environment_options(*app_, environment_);
     target_cell_population_ = WorldSettings{}.target_cell_population;
     app_->add_option("--cell-population", target_cell_population_,
-                     "boxes the axial cuts aim to put in one cell (WorldSettings)")
+                     "boxes the axial cuts aim to put in one cell (DetectionSettings)")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
     app_->add_option("--threads", threads_,
-                     "threads detect() may use; 0 for as many as OpenMP offers (WorldSettings)")
+                     "threads detect() may use; 0 for as many as OpenMP offers (DetectionSettings)")
         ->capture_default_str();
     app_->add_option("--pipeline", pipeline_,
                      "persistent: the default pipeline (persistent cuts); paper: the paper's "
@@ -78,7 +78,7 @@ RunCommand::RunCommand(CLI::App& parent)
         ->capture_default_str();
     app_->add_option("--skin", skin_,
                      "detector only: grow every box by this much on each side and keep the "
-                     "pairs of grown boxes from step to step (WorldSettings::skin; 0: off)")
+                     "pairs of grown boxes from step to step (DetectorSettings::skin; 0: off)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     auto* check_every = app_->add_option("--check-every", check_every_,
@@ -107,9 +107,7 @@ int RunCommand::run_in() const {
     // are indices into that array, turned into ids (outside the timing) where a step is checked.
     const bool through_detector = pipeline_ == "detector";
     workload::SwapRemoveMirror<Box<double, Dim>> mirror;
-    WorldSettings detector_settings = settings;
-    detector_settings.pipeline = Pipeline::persistent_cuts;
-    detector_settings.skin = skin_;
+    const DetectorSettings detector_settings{settings, skin_};  // the shared settings, and the skin
     Detector<double, Dim> detector(detector_settings);
 
     RunRecord run;
@@ -142,6 +140,7 @@ int RunCommand::run_in() const {
             workload::apply_changes(environment.changes(), world);
         }
         record.world_update_seconds = seconds_since(start);
+        pairs.clear();  // last step's pairs are not needed: detect() has none to keep
         start = Clock::now();
         const std::clock_t cpu_start = std::clock();
         record.stats = through_detector ? detector.detect(mirror.boxes(), pairs) : world.detect(pairs);
