@@ -44,14 +44,16 @@ struct DetectStats {
     /// Pipeline::paper_lists. Where threads cut groups side by side, their seconds of selection
     /// over the number of threads.
     double quantile_seconds = 0;
-    /// Pipeline::paper_lists: the diminishing increment sorts (DIS) of the lists of every level.
-    /// Zero with the persistent cuts, which keep no sorted lists (their cells' sweeps sort
-    /// inside check_seconds).
+    /// Pipeline::paper_lists: the diminishing increment sorts (DIS) of the lists of every level
+    /// (the boxes inserted since the last detection are sorted apart and merged in, within
+    /// cut_regroup_seconds). Zero with the persistent cuts, which keep no sorted lists (their
+    /// cells' sweeps sort inside check_seconds).
     double list_sort_seconds = 0;
     /// The rest of the axial cuts: placing every box in its segment on each level and
     /// regrouping the boxes by segment (persistent cuts, the copy in cell order included);
-    /// regrouping each level's lists by the parent level, cutting them and building each cell's
-    /// lists (Pipeline::paper_lists). Without quantile_seconds and list_sort_seconds.
+    /// merging the inserted boxes into the first level's list, regrouping each level's lists by
+    /// the parent level, cutting them and building each cell's lists (Pipeline::paper_lists).
+    /// Without quantile_seconds and list_sort_seconds.
     double cut_regroup_seconds = 0;
     /// Checking the cells (with the sorts of their sweeps), the oversized boxes, and reporting
     /// the pairs; with a skin, testing the candidates and finding those of the refreshed boxes.
