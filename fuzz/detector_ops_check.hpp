@@ -43,13 +43,12 @@ public:
     }
 
 private:
-    /// Half the inputs run with a skin (WorldSettings::skin), chosen by the chunk size the shared
-    /// decoding read, so that the inputs of the corpus keep their meaning: none, a thousandth,
-    /// half a unit, four units.
-    static smb::WorldSettings with_skin(smb::WorldSettings settings) {
+    /// The shared settings of the decoding, and for half the inputs a skin
+    /// (DetectorSettings::skin), chosen by the chunk size the shared decoding read, so that the
+    /// inputs of the corpus keep their meaning: none, a thousandth, half a unit, four units.
+    static smb::DetectorSettings with_skin(const smb::DetectionSettings& settings) {
         constexpr std::array<double, 4> kSkins{0.0, 1e-3, 0.5, 4.0};
-        settings.skin = kSkins[settings.pair_chunk_size % kSkins.size()];
-        return settings;
+        return smb::DetectorSettings{settings, kSkins[settings.pair_chunk_size % kSkins.size()]};
     }
 
     void step(ByteReader& in) {

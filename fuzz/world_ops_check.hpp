@@ -128,7 +128,7 @@ inline smb::BoxId decode_id(ByteReader& in) {
 /// One detection, into a vector or through a sink (`detect` is called with either), checked
 /// against `expected` (brute force, sorted): chunk sizes, the pair limit, a < b, the pairs.
 template <typename Detect>
-void check_detection(const std::vector<smb::Pair>& expected, const smb::WorldSettings& settings, bool through_sink,
+void check_detection(const std::vector<smb::Pair>& expected, const smb::DetectionSettings& settings, bool through_sink,
                      Detect detect) {
     std::vector<smb::Pair> found;
     bool over_limit = false;

@@ -3,12 +3,22 @@
 #include <functional>
 #include <string>
 
+#include "collected_pairs.hpp"
 #include "detector_state.hpp"
 
 namespace smb {
 
+namespace {
+
+/// What a moved-from detector (one without a state) answers: it holds nothing, with default
+/// settings.
+const DetectorSettings kDefaultSettings{};
+const DetectStats kNoStats{};
+
+}  // namespace
+
 template <std::floating_point Real, int Dim>
-Detector<Real, Dim>::Detector(const WorldSettings& settings)
+Detector<Real, Dim>::Detector(const DetectorSettings& settings)
     : state_(std::make_unique<detail::DetectorState<Real, Dim>>(settings)) {}
 
 template <std::floating_point Real, int Dim>
@@ -21,46 +31,53 @@ template <std::floating_point Real, int Dim>
 Detector<Real, Dim>& Detector<Real, Dim>::operator=(Detector&&) noexcept = default;
 
 template <std::floating_point Real, int Dim>
+detail::DetectorState<Real, Dim>& Detector<Real, Dim>::state() {
+    if (!state_) state_ = std::make_unique<detail::DetectorState<Real, Dim>>(kDefaultSettings);
+    return *state_;
+}
+
+template <std::floating_point Real, int Dim>
 DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, std::vector<Pair>& pairs) {
-    pairs.clear();
-    const detail::PairCollector collector{pairs, state_->settings().max_pairs_held, "detect(boxes, sink)"};
-    return state_->detect(boxes, std::cref(collector));
+    auto& state = this->state();
+    return detail::collect_pairs(pairs, state.settings().max_pairs_held, "DetectorSettings::max_pairs_held",
+                                 "detect(boxes, sink)",
+                                 [&](const PairSink& sink) { return state.detect(boxes, sink); });
 }
 
 template <std::floating_point Real, int Dim>
 DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const PairSink& sink) {
     if (!sink) throw ArgumentError("detect: the pair sink is empty");
-    return state_->detect(boxes, sink);
+    return state().detect(boxes, sink);
 }
 
 template <std::floating_point Real, int Dim>
 void Detector<Real, Dim>::clear() {
-    state_->clear();
+    if (state_) state_->clear();
 }
 
 template <std::floating_point Real, int Dim>
-const WorldSettings& Detector<Real, Dim>::settings() const noexcept {
-    return state_->settings();
+const DetectorSettings& Detector<Real, Dim>::settings() const noexcept {
+    return state_ ? state_->settings() : kDefaultSettings;
 }
 
 template <std::floating_point Real, int Dim>
 const DetectStats& Detector<Real, Dim>::last_stats() const noexcept {
-    return state_->last_stats();
+    return state_ ? state_->last_stats() : kNoStats;
 }
 
 template <std::floating_point Real, int Dim>
 HeldPrecision Detector<Real, Dim>::last_precision() const noexcept {
-    return state_->last_precision();
+    return state_ ? state_->last_precision() : HeldPrecision::none;
 }
 
 template <std::floating_point Real, int Dim>
 std::size_t Detector<Real, Dim>::last_retested_pairs() const noexcept {
-    return state_->last_retested_pairs();
+    return state_ ? state_->last_retested_pairs() : 0;
 }
 
 template <std::floating_point Real, int Dim>
 std::size_t Detector<Real, Dim>::bytes_held() const noexcept {
-    return state_->bytes_held();
+    return state_ ? state_->bytes_held() : 0;
 }
 
 template class Detector<float, 2>;

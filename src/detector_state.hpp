@@ -23,14 +23,11 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class DetectorState {
 public:
-    explicit DetectorState(const WorldSettings& settings) : settings_(validated_settings(settings)) {
-        if (settings_.pipeline != Pipeline::persistent_cuts)
-            throw ArgumentError("Detector: WorldSettings::pipeline must be Pipeline::persistent_cuts");
-    }
+    explicit DetectorState(const DetectorSettings& settings) : settings_(validated_settings(settings)) {}
     DetectorState(const DetectorState&) = delete;
     DetectorState& operator=(const DetectorState&) = delete;
 
-    const WorldSettings& settings() const noexcept { return settings_; }
+    const DetectorSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
     HeldPrecision last_precision() const noexcept { return pipeline_.precision(); }
     std::size_t last_retested_pairs() const noexcept { return retested_; }
@@ -54,7 +51,7 @@ public:
             bounds = checked_bounds(boxes);  // throws before any change
             pipeline_.judge(boxes, bounds);
         }
-        stats.update_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        stats.scan_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
         retested_ = 0;
@@ -104,7 +101,7 @@ private:
 
     static constexpr std::size_t kSkinPause = 64;
 
-    WorldSettings settings_;
+    DetectorSettings settings_;
     HeldCutPipeline<Real, Dim> pipeline_;
     SkinList<Real, Dim> skin_;
     std::size_t skin_pause_ = 0;

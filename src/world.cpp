@@ -2,8 +2,10 @@
 
 #include <functional>
 #include <string>
+#include <unordered_set>
 #include <utility>
 
+#include "collected_pairs.hpp"
 #include "world_state.hpp"
 
 namespace smb {
@@ -15,6 +17,29 @@ bool openmp_enabled() noexcept {
     return false;
 #endif
 }
+
+namespace {
+
+/// What a moved-from world (one without a state) answers: it is empty, with default settings.
+const WorldSettings kDefaultSettings{};
+const DetectStats kNoStats{};
+
+/// After the store refused an insert batch for a duplicate id: the same search the store made
+/// (the first id that is in the world or earlier in the batch), to say which of the two it is.
+/// Only on the error path, so the hash set costs the hot path nothing.
+template <class Store>
+[[noreturn]] void throw_duplicate(const Store& store, std::span<const BoxId> ids, const DuplicateIdError& error) {
+    std::unordered_set<BoxId> seen;
+    for (const BoxId id : ids) {
+        if (store.contains(id)) break;
+        if (!seen.insert(id).second)
+            throw DuplicateIdError("insert: box " + std::to_string(id) +
+                                   " is repeated in the batch (an insert names each id once)");
+    }
+    throw error;
+}
+
+}  // namespace
 
 template <std::floating_point Real, int Dim>
 World<Real, Dim>::World(const WorldSettings& settings)
@@ -30,97 +55,109 @@ template <std::floating_point Real, int Dim>
 World<Real, Dim>& World<Real, Dim>::operator=(World&&) noexcept = default;
 
 template <std::floating_point Real, int Dim>
+detail::WorldState<Real, Dim>& World<Real, Dim>::state() {
+    if (!state_) state_ = std::make_unique<detail::WorldState<Real, Dim>>(kDefaultSettings);
+    return *state_;
+}
+
+template <std::floating_point Real, int Dim>
 void World<Real, Dim>::insert(BoxId id, const box_type& box) {
-    state_->store().insert(std::span(&id, 1), std::span(&box, 1));
+    state().store().insert(std::span(&id, 1), std::span(&box, 1));
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::insert(std::span<const BoxId> ids, std::span<const box_type> boxes) {
-    state_->store().insert(ids, boxes);
+    auto& store = state().store();
+    try {
+        store.insert(ids, boxes);
+    } catch (const DuplicateIdError& error) {
+        throw_duplicate(store, ids, error);
+    }
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::remove(BoxId id) {
-    state_->store().remove(std::span(&id, 1));
+    state().store().remove(std::span(&id, 1));
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::remove(std::span<const BoxId> ids) {
-    state_->store().remove(ids);
+    state().store().remove(ids);
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::update(BoxId id, const box_type& box) {
-    state_->store().update(std::span(&id, 1), std::span(&box, 1));
+    state().store().update(std::span(&id, 1), std::span(&box, 1));
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::update(std::span<const BoxId> ids, std::span<const box_type> boxes) {
-    state_->store().update(ids, boxes);
+    state().store().update(ids, boxes);
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::assign(std::span<const box_type> boxes) {
-    state_->store().assign(boxes);
+    state().store().assign(boxes);
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::clear() {
-    state_->clear();
+    if (state_) state_->clear();
 }
 
 template <std::floating_point Real, int Dim>
 bool World<Real, Dim>::contains(BoxId id) const {
-    return state_->store().contains(id);
+    return state_ && state_->store().contains(id);
 }
 
 template <std::floating_point Real, int Dim>
 typename World<Real, Dim>::box_type World<Real, Dim>::box(BoxId id) const {
+    if (!state_) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
     const auto& store = state_->store();
     return store.box_at(store.slot_of(id));
 }
 
 template <std::floating_point Real, int Dim>
 std::size_t World<Real, Dim>::size() const noexcept {
-    return state_->store().size();
+    return state_ ? state_->store().size() : 0;
 }
 
 template <std::floating_point Real, int Dim>
 const WorldSettings& World<Real, Dim>::settings() const noexcept {
-    return state_->settings();
+    return state_ ? state_->settings() : kDefaultSettings;
 }
 
 template <std::floating_point Real, int Dim>
 DetectStats World<Real, Dim>::detect(std::vector<Pair>& pairs) {
-    pairs.clear();
-    const detail::PairCollector collector{pairs, state_->settings().max_pairs_held, "detect(sink)"};
-    return state_->detect(std::cref(collector));
+    auto& state = this->state();
+    return detail::collect_pairs(pairs, state.settings().max_pairs_held, "WorldSettings::max_pairs_held",
+                                 "detect(sink)", [&](const PairSink& sink) { return state.detect(sink); });
 }
 
 template <std::floating_point Real, int Dim>
 DetectStats World<Real, Dim>::detect(const PairSink& sink) {
     if (!sink) throw ArgumentError("detect: the pair sink is empty");
-    return state_->detect(sink);
+    return state().detect(sink);
 }
 
 template <std::floating_point Real, int Dim>
 const DetectStats& World<Real, Dim>::last_stats() const noexcept {
-    return state_->last_stats();
+    return state_ ? state_->last_stats() : kNoStats;
 }
 
 template <std::floating_point Real, int Dim>
 HeldPrecision World<Real, Dim>::last_precision() const noexcept {
-    return state_->last_precision();
+    return state_ ? state_->last_precision() : HeldPrecision::none;
 }
 
 template <std::floating_point Real, int Dim>
 std::size_t World<Real, Dim>::last_retested_pairs() const noexcept {
-    return state_->last_retested_pairs();
+    return state_ ? state_->last_retested_pairs() : 0;
 }
 
 template <std::floating_point Real, int Dim>
 std::size_t World<Real, Dim>::bytes_held() const noexcept {
-    return state_->bytes_held();
+    return state_ ? state_->bytes_held() : 0;
 }
 
 template <std::floating_point Real, int Dim>

@@ -30,11 +30,7 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class WorldState {
 public:
-    explicit WorldState(const WorldSettings& settings) : settings_(validated_settings(settings)) {
-        if (settings_.skin != 0)
-            throw ArgumentError("WorldSettings::skin is a Detector setting: a World takes 0, not " +
-                                std::to_string(settings_.skin));
-    }
+    explicit WorldState(const WorldSettings& settings) : settings_(validated_settings(settings)) {}
     WorldState(const WorldState&) = delete;
     WorldState& operator=(const WorldState&) = delete;
 
@@ -45,7 +41,7 @@ public:
     HeldPrecision last_precision() const noexcept {
         if (settings_.pipeline == Pipeline::persistent_cuts) return persistent_.precision();
         if (stats_.boxes == 0) return HeldPrecision::none;
-        return std::is_same_v<Real, float> ? HeldPrecision::floats : HeldPrecision::exact;
+        return std::is_same_v<Real, float> ? HeldPrecision::floats : HeldPrecision::doubles;
     }
     std::size_t last_retested_pairs() const noexcept {
         return settings_.pipeline == Pipeline::persistent_cuts ? persistent_.retested() : 0;
@@ -69,9 +65,9 @@ public:
             const SlotRenumbering renumbering = store_.compact(paper ? paper_.listed() : persistent_.listed());
             if (paper) paper_.fold_removals(renumbering);
             else persistent_.fold_removals(renumbering);
+            stats.update_seconds = std::chrono::duration<double>(Clock::now() - start).count();
         }
         stats.boxes = store_.slot_count();
-        stats.update_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
         if (settings_.pipeline == Pipeline::paper_lists) {
@@ -82,9 +78,11 @@ public:
         } else {
             // The store holds valid boxes only: this pass finds the bounds and throws nothing.
             // Float boxes are held as they are, and need no bounds.
+            const auto scan_start = Clock::now();
             SceneBounds<Real, Dim> bounds;
             if constexpr (HeldCutPipeline<Real, Dim>::kMayRound) bounds = checked_bounds(store_.boxes());
             persistent_.judge(store_.boxes(), bounds);
+            stats.scan_seconds = std::chrono::duration<double>(Clock::now() - scan_start).count();
             persistent_.detect(store_.boxes(), store_.ids(), bounds, settings_, output, stats);
         }
         output.flush();

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -76,6 +77,23 @@ TEST(CliGenerate, ImpossibleParametersFailCleanly) {
     EXPECT_EQ(folder.entry_count(), 0u);
 }
 
+/// The phases of smb::DetectStats, each under its field's name without "_seconds".
+const std::vector<std::string> kPhaseKeys{"check",     "containment", "cut_regroup", "list_sort",
+                                          "quantile", "scan",        "update"};
+
+std::vector<std::string> phase_keys(const nlohmann::json& phases) {
+    std::vector<std::string> keys;
+    for (const auto& [key, value] : phases.items()) keys.push_back(key);
+    std::sort(keys.begin(), keys.end());
+    return keys;
+}
+
+double phase_sum(const nlohmann::json& phases) {
+    double sum = 0;
+    for (const auto& [key, value] : phases.items()) sum += value.get<double>();
+    return sum;
+}
+
 TEST(CliRun, JsonSummaryOfASmallRun) {
     TempFolder folder;
     const auto result = run_smb(folder, {"run", "-n", "2000", "-s", "10", "--json"});
@@ -86,12 +104,15 @@ TEST(CliRun, JsonSummaryOfASmallRun) {
     EXPECT_EQ(summary["boxes"]["initial"], 2000);
     EXPECT_DOUBLE_EQ(summary["packing_density"].get<double>(), 0.4);
     EXPECT_GT(summary["build_seconds"].get<double>(), 0);
-    // The build's phases are parts of it; the first detection always cuts (sort > 0).
+    // The build's phases are disjoint parts of it; the first detection always selects the
+    // quantiles of its cuts, and the persistent cuts sort no lists.
     const auto& build_phases = summary["build_phase_seconds"];
-    EXPECT_GT(build_phases["sort"].get<double>(), 0);
-    EXPECT_LE(build_phases["sort"].get<double>() + build_phases["cut_regroup"].get<double>() +
-                  build_phases["check"].get<double>(),
-              summary["build_seconds"].get<double>());
+    EXPECT_GT(build_phases["quantile"].get<double>(), 0);
+    EXPECT_EQ(build_phases["list_sort"].get<double>(), 0);
+    EXPECT_EQ(build_phases["containment"].get<double>(), 0);
+    EXPECT_LE(phase_sum(build_phases), summary["build_seconds"].get<double>());
+    EXPECT_EQ(phase_keys(build_phases), kPhaseKeys);
+    EXPECT_EQ(phase_keys(summary["phase_seconds_median"]), kPhaseKeys);
     EXPECT_LE(summary["detect_seconds"]["min"].get<double>(),
               summary["detect_seconds"]["median"].get<double>());
     EXPECT_LE(summary["detect_seconds"]["min"].get<double>(), summary["detect_seconds"]["mean"].get<double>());
@@ -105,6 +126,23 @@ TEST(CliRun, JsonSummaryOfASmallRun) {
     EXPECT_TRUE(summary["check"]["ok"].get<bool>());
     EXPECT_EQ(summary["check"]["steps_checked"], 1);
     EXPECT_EQ(summary["check"]["last_checked_step"], 10);
+}
+
+TEST(CliRun, PaperPipelineTimesItsListSortsNotQuantiles) {
+    TempFolder folder;
+    const auto result = run_smb(folder, {"run", "-n", "2000", "-s", "4", "--pipeline", "paper", "--json"});
+    ASSERT_EQ(result.status, 0) << result.err;
+    const auto summary = nlohmann::json::parse(result.out);
+    const auto& build_phases = summary["build_phase_seconds"];
+    EXPECT_GT(build_phases["list_sort"].get<double>(), 0);
+    EXPECT_EQ(build_phases["quantile"].get<double>(), 0);
+    EXPECT_EQ(build_phases["scan"].get<double>(), 0);
+    EXPECT_LE(phase_sum(build_phases), summary["build_seconds"].get<double>());
+
+    const auto text = run_smb(folder, {"run", "-n", "1000", "-s", "3", "--pipeline", "paper"});
+    ASSERT_EQ(text.status, 0) << text.err;
+    EXPECT_NE(text.out.find("list sort"), std::string::npos) << text.out;
+    EXPECT_EQ(text.out.find("quantiles"), std::string::npos) << text.out;
 }
 
 TEST(CliRun, CheckEveryK2d) {
@@ -152,6 +190,10 @@ TEST(CliRun, DetectorWithASkinChecksEveryStepAndSaysHowItKeptItsCandidates) {
     EXPECT_LT(summary["skin_steps"]["rebuilt"].get<std::size_t>(), 11U);
     EXPECT_GT(summary["skin_steps"]["candidates_median"].get<double>(),
               summary["pairs"]["median"].get<double>());
+    // A detector takes its boxes whole: it has no updates to apply, and checks its array.
+    EXPECT_EQ(summary["phase_seconds_median"]["update"].get<double>(), 0);
+    EXPECT_GT(summary["phase_seconds_median"]["scan"].get<double>(), 0);
+    EXPECT_GT(summary["phase_seconds_median"]["containment"].get<double>(), 0);
 
     const auto text = run_smb(folder, {"run", "-n", "1000", "-s", "4", "--pipeline", "detector", "--skin", "0.1"});
     ASSERT_EQ(text.status, 0) << text.err;

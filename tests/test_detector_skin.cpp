@@ -1,4 +1,4 @@
-// smb::Detector with a skin (WorldSettings::skin): the candidate list kept between detections
+// smb::Detector with a skin (DetectorSettings::skin): the candidate list kept between detections
 // against brute force, over many steps of small motion with jumps, swap-removals, appends, an
 // array that shrinks and grows back, skins from tight to far too wide; and the guarantees the
 // Detector gives without a skin (order whatever the threads, throwing sinks, bad input).
@@ -63,7 +63,7 @@ protected:
     /// A simulation's life: small motion every step, a few bodies jumping, swap-removed and
     /// appended, and now and then the array cut short and grown back. Returns how many steps
     /// kept the candidates (no rebuild), so that a test can see the kept path ran.
-    std::size_t drive(std::uint64_t seed, const WorldSettings& settings, double centre, double shift,
+    std::size_t drive(std::uint64_t seed, const DetectorSettings& settings, double centre, double shift,
                       int steps = 40, std::size_t n = 700) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed << ", skin " << settings.skin << ", centre " << centre
                                           << ", threads " << settings.threads);
@@ -109,7 +109,7 @@ TYPED_TEST_SUITE(DetectorSkinTest, Shapes, ShapeNames);
 TYPED_TEST(DetectorSkinTest, MatchesBruteForceOverAManyStepLifeWithEverySkin) {
     for (const double skin : {0.01, 0.1, 0.4, 2.0}) {
         for (std::uint64_t seed = 1; seed <= 2; ++seed) {
-            WorldSettings settings;
+            DetectorSettings settings;
             settings.skin = skin;
             const std::size_t kept = this->drive(seed, settings, 0.0, 0.01);
             if (skin >= 0.1) {
@@ -123,7 +123,7 @@ TYPED_TEST(DetectorSkinTest, MatchesBruteForceOverAManyStepLifeWithEverySkin) {
 
 TYPED_TEST(DetectorSkinTest, MatchesBruteForceFarFromTheOriginAndWhenEverythingMovesFar) {
     using TestReal = typename TestFixture::Real;
-    WorldSettings settings;
+    DetectorSettings settings;
     settings.skin = 0.2;
     // Far: for doubles the held floats are shifted to the scene's middle; for floats the grid of
     // representable values is coarse (1/16 at 1e6), which makes the fat boxes coarser only.
@@ -155,7 +155,7 @@ TYPED_TEST(DetectorSkinTest, SettlesTouchingAndZeroSizeBoxes) {
             }
         }
     }
-    WorldSettings settings;
+    DetectorSettings settings;
     settings.skin = 0.25;
     Detector<typename TestFixture::Real, dim> detector(settings);
     for (int step = 0; step < 4; ++step) {
@@ -173,7 +173,7 @@ TYPED_TEST(DetectorSkinTest, ReportsTheSamePairsInTheSameOrderWhateverTheThreadC
         Random random(21);
         std::vector<TestBox> boxes;
         for (int i = 0; i < 1500; ++i) boxes.push_back(this->new_box(random, 0, 14));
-        WorldSettings settings;
+        DetectorSettings settings;
         settings.threads = threads;
         settings.skin = 0.1;
         Detector<typename TestFixture::Real, TestFixture::Dim> detector(settings);
@@ -206,7 +206,7 @@ TYPED_TEST(DetectorSkinTest, OnManyBoxesSharesTheWorkAmongThreadsWithoutChanging
         Random random(31);
         std::vector<TestBox> boxes;
         for (int i = 0; i < 50000; ++i) boxes.push_back(this->new_box(random, 0, space));
-        WorldSettings settings;
+        DetectorSettings settings;
         settings.threads = threads;
         settings.skin = 0.1;
         settings.pair_chunk_size = 1000;
@@ -247,7 +247,7 @@ TYPED_TEST(DetectorSkinTest, AThrowingSinkLeavesItValid) {
     Random random(5);
     std::vector<TestBox> boxes;
     for (int i = 0; i < 1500; ++i) boxes.push_back(this->new_box(random, 0, 12, 2));
-    WorldSettings settings;
+    DetectorSettings settings;
     settings.skin = 0.1;
     settings.pair_chunk_size = 64;
     Detector<typename TestFixture::Real, TestFixture::Dim> detector(settings);
@@ -272,7 +272,7 @@ TYPED_TEST(DetectorSkinTest, StepsAsideWhenTheSkinMakesFarTooManyCandidates) {
     Random random(8);
     std::vector<TestBox> boxes;
     for (int i = 0; i < 1600; ++i) boxes.push_back(this->new_box(random, 0, 30));
-    WorldSettings settings;
+    DetectorSettings settings;
     settings.skin = 1e6;  // every pair is a candidate: 1.3 million, past the cap of 32 per box
     Detector<typename TestFixture::Real, TestFixture::Dim> detector(settings);
     for (int step = 0; step < 3; ++step) {
@@ -295,7 +295,7 @@ TYPED_TEST(DetectorSkinTest, StepsAsideWhileTheBoxesMoveFartherThanTheSkin) {
         Random random(12);
         std::vector<TestBox> boxes;
         for (int i = 0; i < 2000; ++i) boxes.push_back(this->new_box(random, 0, 20));
-        WorldSettings settings;
+        DetectorSettings settings;
         settings.skin = 0.05;
         Detector<typename TestFixture::Real, TestFixture::Dim> detector(settings);
         std::vector<bool> skinned;
@@ -327,7 +327,7 @@ TYPED_TEST(DetectorSkinTest, RejectsAnInvalidBoxByIndexAndStaysAsItWas) {
     Random random(11);
     std::vector<TestBox> boxes;
     for (int i = 0; i < 300; ++i) boxes.push_back(this->new_box(random, 0, 10));
-    WorldSettings settings;
+    DetectorSettings settings;
     settings.skin = 0.3;
     Detector<TestReal, TestFixture::Dim> detector(settings);
     std::vector<Pair> before;
@@ -343,21 +343,19 @@ TYPED_TEST(DetectorSkinTest, RejectsAnInvalidBoxByIndexAndStaysAsItWas) {
     EXPECT_EQ(after, before);
 }
 
-TEST(DetectorSkinSettings, RefusesANegativeOrNonFiniteSkinAndAWorldRefusesAnySkin) {
+// A World has no skin to refuse: WorldSettings has none (tests/test_settings.cpp).
+TEST(DetectorSkinSettings, RefusesANegativeOrNonFiniteSkin) {
     for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
-        WorldSettings settings;
+        DetectorSettings settings;
         settings.skin = bad;
         EXPECT_THROW(Detector3d{settings}, ArgumentError);
     }
-    WorldSettings settings;
-    settings.skin = 0.1;
-    EXPECT_THROW(World3d{settings}, ArgumentError);
 }
 
 // Double boxes held as floats: pairs closer than the floats resolve are settled on the doubles,
 // on the kept path as on the rebuild.
 TEST(DetectorSkinPrecision, SettlesOnTheDoublesWhatTheFloatsCannot) {
-    WorldSettings settings;
+    DetectorSettings settings;
     settings.skin = 0.05;
     Detector3d detector(settings);
     const double gap = 1e-12;

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <list>
 #include <string>
 #include <vector>
 
@@ -91,6 +94,38 @@ TYPED_TEST(FindOverlappingPairsTest, SettingsDoNotChangeTheAnswer) {
         EXPECT_TRUE(this->finds_like_brute_force(boxes, settings));
     }
 }
+
+// Every contiguous range of boxes is taken as it is: no explicit std::span<const Box> needed.
+TYPED_TEST(FindOverlappingPairsTest, TakesEveryContiguousRangeOfBoxes) {
+    std::vector<typename TestFixture::BoxT> boxes = this->random_boxes(341, 300, 12.0, 0.3, 2.0);
+    const std::vector<Pair> expected =
+        find_overlapping_pairs<typename TestFixture::Real, TestFixture::Dim>(
+            std::span<const typename TestFixture::BoxT>(boxes));
+    ASSERT_FALSE(expected.empty());
+    const std::vector<typename TestFixture::BoxT>& const_boxes = boxes;
+    const std::span<typename TestFixture::BoxT> mutable_span(boxes);
+    const std::span<const typename TestFixture::BoxT> const_span(boxes);
+    std::array<typename TestFixture::BoxT, 300> array{};
+    std::copy(boxes.begin(), boxes.end(), array.begin());
+
+    EXPECT_EQ(find_overlapping_pairs(boxes), expected);
+    EXPECT_EQ(find_overlapping_pairs(const_boxes), expected);
+    EXPECT_EQ(find_overlapping_pairs(std::span(boxes)), expected);
+    EXPECT_EQ(find_overlapping_pairs(mutable_span), expected);
+    EXPECT_EQ(find_overlapping_pairs(const_span), expected);
+    EXPECT_EQ(find_overlapping_pairs(array), expected);
+    std::vector<Pair> with_settings = find_overlapping_pairs(boxes, test_settings());
+    std::vector<Pair> sorted_expected = expected;
+    sort_pairs(with_settings);
+    sort_pairs(sorted_expected);
+    EXPECT_EQ(with_settings, sorted_expected);
+    EXPECT_TRUE(find_overlapping_pairs(std::vector<typename TestFixture::BoxT>{}).empty());
+}
+
+// What is not a contiguous range of smb boxes does not reach find_overlapping_pairs.
+static_assert(BoxRange<std::vector<Box3d>> && BoxRange<std::span<Box2f>> && BoxRange<std::array<Box3f, 2>>);
+static_assert(BoxRange<const std::vector<Box2d>> && BoxRange<Box3d[4]>);
+static_assert(!BoxRange<std::vector<double>> && !BoxRange<std::list<Box3d>> && !BoxRange<Box3d>);
 
 }  // namespace
 }  // namespace smb::test

@@ -269,6 +269,24 @@ TYPED_TEST(WorldErrorTest, BatchInsertNamingAnIdTwice) {
         std::to_string(kBadId));
 }
 
+// The message says which of the two an insert's duplicate is: named twice in the batch, or
+// already in the world.
+TYPED_TEST(WorldErrorTest, BatchInsertNamingAnIdTwiceSaysItIsRepeatedInTheBatch) {
+    std::vector<BoxId> ids;
+    std::vector<typename TestFixture::BoxT> boxes;
+    this->batch_with(this->random_valid_box(), ids, boxes);
+    ids.push_back(kBadId);
+    boxes.push_back(this->random_valid_box());
+    this->template expect_rejected<DuplicateIdError>(
+        "batch insert with an id twice", [&](TypeParam& w) { w.insert(ids, boxes); },
+        std::to_string(kBadId) + " is repeated in the batch");
+    const BoxId present = this->some_present_id();
+    ids.back() = present;
+    this->template expect_rejected<DuplicateIdError>(
+        "batch insert against the world", [&](TypeParam& w) { w.insert(ids, boxes); },
+        std::to_string(present) + " is already in the world");
+}
+
 TYPED_TEST(WorldErrorTest, RemoveOfAnUnknownId) {
     this->template expect_rejected<UnknownIdError>(
         "remove", [](TypeParam& w) { w.remove(kBadId); }, std::to_string(kBadId));

@@ -108,7 +108,7 @@ TEST(WorldPrecision, HoldsDoublesWhereFloatsWouldNotResolveTheScene) {
     World3d world;
     world.assign(points);
     EXPECT_TRUE(detected(world).empty());
-    EXPECT_EQ(world.last_precision(), HeldPrecision::exact);
+    EXPECT_EQ(world.last_precision(), HeldPrecision::doubles);
     EXPECT_EQ(world.last_retested_pairs(), 0U);
 
     // Far beyond float range the boxes are held as doubles too, and the pairs stay exact.
@@ -122,7 +122,7 @@ TEST(WorldPrecision, HoldsDoublesWhereFloatsWouldNotResolveTheScene) {
     world.assign(points);
     const std::vector<Pair> expected = brute_force_pairs<double, 3>(std::span<const Box3d>(points));
     EXPECT_EQ(detected(world), expected);
-    EXPECT_EQ(world.last_precision(), HeldPrecision::exact);
+    EXPECT_EQ(world.last_precision(), HeldPrecision::doubles);
 }
 
 TEST(WorldPrecision, SaysWhatEachPipelineHeld) {
@@ -141,7 +141,7 @@ TEST(WorldPrecision, SaysWhatEachPipelineHeld) {
     World3d paper_world(paper);
     paper_world.assign(boxes);
     EXPECT_EQ(detected(paper_world).size(), 1U);
-    EXPECT_EQ(paper_world.last_precision(), HeldPrecision::exact);
+    EXPECT_EQ(paper_world.last_precision(), HeldPrecision::doubles);
 
     World3f float_world;
     const std::vector<Box3f> float_boxes{Box3f{{0, 0, 0}, {1, 1, 1}}, Box3f{{1, 1, 1}, {2, 2, 2}}};

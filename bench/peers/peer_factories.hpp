@@ -15,7 +15,7 @@ template <int Dim>
 
 /// smb::Detector over an array in which each body keeps its index (no ids inside smb).
 template <int Dim>
-[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const WorldSettings& settings);
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const DetectorSettings& settings);
 
 /// Every pair tested, O(N^2): the reference on small scenes.
 template <int Dim>

@@ -41,21 +41,21 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
         settings.pipeline = Pipeline::paper_lists;
         return make_smb_world_peer<Dim>(settings);
     }
-    if (name == "smb_detector") return make_smb_detector_peer<Dim>(WorldSettings{});
+    if (name == "smb_detector") return make_smb_detector_peer<Dim>(DetectorSettings{});
     if (name == "smb_detector_2threads") {
-        WorldSettings settings;
+        DetectorSettings settings;
         settings.threads = 2;
         return make_smb_detector_peer<Dim>(settings);
     }
     if (name == "smb_detector_skin") {
         // Box2D's b2_aabbMargin (0.1): the same fattening as the tree peer's, on scenes whose
         // largest box side is 1.
-        WorldSettings settings;
+        DetectorSettings settings;
         settings.skin = 0.1;
         return make_smb_detector_peer<Dim>(settings);
     }
     if (name == "smb_detector_skin_2threads") {
-        WorldSettings settings;
+        DetectorSettings settings;
         settings.skin = 0.1;
         settings.threads = 2;
         return make_smb_detector_peer<Dim>(settings);

@@ -14,7 +14,7 @@ namespace {
 template <int Dim>
 class SmbDetectorPeer final : public Peer<Dim> {
 public:
-    explicit SmbDetectorPeer(const WorldSettings& settings) : detector_(settings) {}
+    explicit SmbDetectorPeer(const DetectorSettings& settings) : detector_(settings) {}
 
     void build(const SceneStep<Dim>& step, std::vector<Pair>& pairs) override { find_pairs(step, pairs); }
 
@@ -36,6 +36,7 @@ public:
 private:
     void find_pairs(const SceneStep<Dim>& step, std::vector<Pair>& pairs) {
         mirror_.follow(step.removed_ids, step.ids.subspan(step.first_inserted), step.ids, step.boxes);
+        pairs.clear();  // as every peer: detect() then has no old pairs to keep
         detector_.detect(mirror_.boxes(), pairs);
         for (Pair& pair : pairs) pair = ordered_pair(mirror_.id_at(pair.a), mirror_.id_at(pair.b));
     }
@@ -50,11 +51,11 @@ private:
 }  // namespace
 
 template <int Dim>
-std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const WorldSettings& settings) {
+std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const DetectorSettings& settings) {
     return std::make_unique<SmbDetectorPeer<Dim>>(settings);
 }
 
-template std::unique_ptr<Peer<2>> make_smb_detector_peer<2>(const WorldSettings&);
-template std::unique_ptr<Peer<3>> make_smb_detector_peer<3>(const WorldSettings&);
+template std::unique_ptr<Peer<2>> make_smb_detector_peer<2>(const DetectorSettings&);
+template std::unique_ptr<Peer<3>> make_smb_detector_peer<3>(const DetectorSettings&);
 
 }  // namespace smb::bench

@@ -14,6 +14,7 @@ public:
 
     void build(const SceneStep<Dim>& step, std::vector<Pair>& pairs) override {
         world_.insert(step.ids, step.boxes);
+        pairs.clear();  // as every peer: detect() then has no old pairs to keep
         world_.detect(pairs);
         phases_ = {};
     }
@@ -23,10 +24,13 @@ public:
         world_.update(step.ids.first(step.first_inserted), step.boxes.first(step.first_inserted));
         if (step.inserted_count() > 0)
             world_.insert(step.ids.subspan(step.first_inserted), step.boxes.subspan(step.first_inserted));
+        pairs.clear();  // as every peer: detect() then has no old pairs to keep
         const DetectStats& stats = world_.detect(pairs);
         ++steps_;
         phases_.update_seconds += stats.update_seconds;
-        phases_.sort_seconds += stats.sort_seconds;
+        phases_.scan_seconds += stats.scan_seconds;
+        phases_.quantile_seconds += stats.quantile_seconds;
+        phases_.list_sort_seconds += stats.list_sort_seconds;
         phases_.cut_regroup_seconds += stats.cut_regroup_seconds;
         phases_.check_seconds += stats.check_seconds;
         phases_.copy_seconds += stats.copy_seconds;
@@ -44,9 +48,11 @@ public:
         if (steps_ == 0) return {};
         const double n = static_cast<double>(steps_);
         std::ostringstream json;
-        json << "\"smb_update_s\":" << phases_.update_seconds / n << ",\"smb_sort_s\":" << phases_.sort_seconds / n
-             << ",\"smb_cut_regroup_s\":" << phases_.cut_regroup_seconds / n << ",\"smb_check_s\":"
-             << phases_.check_seconds / n << ",\"smb_copy_s\":" << phases_.copy_seconds / n
+        json << "\"smb_update_s\":" << phases_.update_seconds / n << ",\"smb_scan_s\":" << phases_.scan_seconds / n
+             << ",\"smb_quantile_s\":" << phases_.quantile_seconds / n
+             << ",\"smb_list_sort_s\":" << phases_.list_sort_seconds / n
+             << ",\"smb_cut_regroup_s\":" << phases_.cut_regroup_seconds / n
+             << ",\"smb_check_s\":" << phases_.check_seconds / n << ",\"smb_copy_s\":" << phases_.copy_seconds / n
              << ",\"smb_level_s\":[" << phases_.level_seconds[0] / n << ',' << phases_.level_seconds[1] / n << ','
              << phases_.level_seconds[2] / n << "],\"smb_detect_s\":" << phases_.total_seconds / n
              << ",\"smb_sort_moves\":" << static_cast<double>(phases_.sort_moves) / n << ",\"smb_cells\":" << phases_.cells

@@ -34,25 +34,29 @@ class DetectorState;
 /// their bodies by ids that come and go.
 ///
 /// Precision: for double boxes, the detector holds floats, shifted to the middle of the scene
-/// and rounded to the nearest float, and tests again on the caller's doubles every pair that the floats
-/// cannot settle (boxes within a few floats of touching), so the pairs are exact. When floats
-/// would not resolve the scene (more than 1/8 of the boxes thinner than 2^-14 of the scene's
-/// extent on some axis, or coordinates beyond float range) it holds doubles instead;
-/// last_precision() says which. The choice is made again when the scene outgrows the region it
+/// and rounded to the nearest float, and tests again on the caller's doubles every pair that
+/// the floats cannot settle (boxes within a few floats of touching), so the pairs are exact.
+/// When floats would not resolve the scene (more than 1/8 of the boxes thinner than 2^-14 of
+/// the scene's extent on some axis, or coordinates beyond float range) it holds doubles
+/// instead; last_precision() says which. The choice is made again when the scene outgrows the region it
 /// was made for, or the number of boxes changes by more than a quarter.
 ///
-/// Skin: with WorldSettings::skin > 0 it also keeps, between calls, each box's fat box (grown by
-/// the skin), a float copy of the boxes, and the pairs of fat boxes that overlap; a call then
+/// Skin: with DetectorSettings::skin > 0 it also keeps, between calls, each box's fat box (grown
+/// by the skin), a float copy of the boxes, and the pairs of fat boxes that overlap; a call then
 /// checks each box against its fat box and tests those pairs only, which pays while boxes move
 /// much less than the skin per call (docs/algorithm.md, docs/performance.md "The skin").
 ///
 /// Errors: detect() checks every box before it changes anything; a box with NaN, infinity or
-/// min > max throws InvalidBoxError naming its index, and the detector stays as it was.
-/// WorldSettings::pipeline must be Pipeline::persistent_cuts (ArgumentError otherwise).
+/// min > max throws InvalidBoxError naming its index, and the detector and the caller's vector
+/// of pairs stay as they were.
 ///
-/// Determinism and threads: as World (WorldSettings::threads; the sink runs on the calling
+/// Determinism and threads: as World (DetectorSettings::threads; the sink runs on the calling
 /// thread; the same calls give the same pairs in the same order whatever the thread count).
 /// The array must not change while detect() runs.
+///
+/// Moving: a Detector moves in constant time and without throwing. The detector moved from is
+/// left holding nothing, with default settings (DetectorSettings{}), as a new one; every call
+/// is valid on it.
 template <std::floating_point Real, int Dim>
 class Detector {
 public:
@@ -60,15 +64,18 @@ public:
     using box_type = Box<Real, Dim>;
     static constexpr int dimension = Dim;
 
-    explicit Detector(const WorldSettings& settings = {});
+    explicit Detector(const DetectorSettings& settings = {});
     ~Detector();
     Detector(Detector&&) noexcept;
     Detector& operator=(Detector&&) noexcept;
     Detector(const Detector&) = delete;
     Detector& operator=(const Detector&) = delete;
 
-    /// Reports every overlapping pair of `boxes` into `pairs` (cleared first), box i under id i.
-    /// Throws PairLimitError past settings().max_pairs_held pairs.
+    /// Replaces the contents of `pairs` by every overlapping pair of `boxes`, box i under id i.
+    /// Throws PairLimitError past settings().max_pairs_held pairs; whatever it throws, `pairs`
+    /// holds what it held before. The pairs are collected after the old contents and moved to
+    /// the front at the end: a caller who has no use for the old pairs clears `pairs` first and
+    /// saves that move (its capacity is kept either way).
     DetectStats detect(std::span<const box_type> boxes, std::vector<Pair>& pairs);
     /// Reports every overlapping pair to `sink`, in chunks of settings().pair_chunk_size. An
     /// exception thrown by the sink ends the detection and propagates; the detector stays valid.
@@ -77,7 +84,7 @@ public:
     /// Forgets the cuts and the order, and releases the memory held; keeps the settings.
     void clear();
 
-    [[nodiscard]] const WorldSettings& settings() const noexcept;
+    [[nodiscard]] const DetectorSettings& settings() const noexcept;
     /// Statistics of the last detect() call.
     [[nodiscard]] const DetectStats& last_stats() const noexcept;
     /// What the last detection held: floats or a copy of the doubles.
@@ -90,6 +97,9 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept;
 
 private:
+    /// The state; a moved-from detector (state_ null) gets a fresh one first.
+    detail::DetectorState<Real, Dim>& state();
+
     std::unique_ptr<detail::DetectorState<Real, Dim>> state_;
 };
 

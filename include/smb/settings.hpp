@@ -1,4 +1,7 @@
 #pragma once
+// Tuning of a World (WorldSettings) and of a Detector (DetectorSettings), and what they share
+// (DetectionSettings). Every field has a default that suits the paper's workloads; a
+// default-constructed settings object is the recommended start.
 
 #include <cstddef>
 
@@ -15,44 +18,51 @@ enum class Pipeline {
     paper_lists,
 };
 
-/// Tuning of a World. Every field has a default that suits the paper's workloads; a
-/// default-constructed WorldSettings is the recommended start.
-struct WorldSettings {
+/// What World and Detector both take: the axial cuts, the way pairs are handed over, the
+/// threads. Not used on its own: a World takes WorldSettings, a Detector DetectorSettings.
+struct DetectionSettings {
     /// Number of boxes the axial cut aims to put in one cell. The number of cuts per axis is
     /// derived from it: about (N / target_cell_population)^(1/Dim) segments on each axis.
+    /// At least 1.
     std::size_t target_cell_population = 24;
 
-    /// Number of pairs handed to a PairSink in one call of detect(sink).
+    /// Number of pairs handed to a PairSink in one call of detect(sink). At least 1.
     std::size_t pair_chunk_size = 4096;
 
-    /// Most pairs detect(std::vector<Pair>&) may collect (2^28 pairs are 4 GiB). Past it, it
-    /// throws PairLimitError instead of exhausting memory; detect(sink) has no limit, since the
-    /// caller consumes the pairs chunk by chunk. 100 000 identical boxes make 5·10^9 pairs.
+    /// Most pairs detect(..., std::vector<Pair>&) may collect (2^28 pairs are 4 GiB). Past it,
+    /// it throws PairLimitError instead of exhausting memory; detect(sink) has no limit, since
+    /// the caller consumes the pairs chunk by chunk. 100 000 identical boxes make 5·10^9 pairs.
     std::size_t max_pairs_held = std::size_t{1} << 28;
 
+    /// Threads detect() may use (OpenMP): 1 runs on the calling thread alone, 0 takes as many
+    /// as OpenMP offers (OMP_NUM_THREADS, else the cores). The pairs and their order are the
+    /// same whatever the number. One by default, so that a simulation that already runs a
+    /// thread or a process per core is not oversubscribed. Without OpenMP at build time
+    /// (smb::openmp_enabled() is false), every value means one; so does a World with
+    /// Pipeline::paper_lists. At most 1024: a larger value is refused with smb::ArgumentError.
+    std::size_t threads = 1;
+};
+
+/// Tuning of a World: the shared DetectionSettings and the choice of pipeline.
+struct WorldSettings : DetectionSettings {
     /// Which pipeline detects the pairs.
     Pipeline pipeline = Pipeline::persistent_cuts;
+};
 
-    /// Threads detect() may use (persistent_cuts only; OpenMP): 1 runs on the calling thread
-    /// alone, 0 takes as many as OpenMP offers (OMP_NUM_THREADS, else the cores). The pairs and
-    /// their order are the same whatever the number. One by default, so that a simulation that
-    /// already runs a thread or a process per core is not oversubscribed. Without OpenMP at
-    /// build time (smb::openmp_enabled() is false), every value means one. At most 1024: a
-    /// larger value is refused with smb::ArgumentError.
-    std::size_t threads = 1;
-
-    /// Detector only (a World refuses anything but 0): how far, in the boxes' own units, each
-    /// box is grown on every side to make a fat box. 0, the default, detects from scratch at
-    /// every call. A positive skin keeps the pairs of fat boxes that overlap as candidates from
-    /// one call to the next (a Verlet list): while every box stays inside its fat box, a
-    /// detection only tests the candidates, and the boxes that left their fat box (or arrived)
-    /// look for new ones. Worth it when boxes move much less than the skin per call (a DEM
-    /// code's "neighbour skin"; about the distance a body travels in 10 to 50 steps, and a
-    /// fraction of its size): the candidates grow with the skin, the refreshes shrink. It holds
-    /// about 40 bytes per box more, plus 8 per candidate. Where a quarter of the boxes leave
-    /// their fat box in one step, the candidates keep being rebuilt (boxes that move farther
-    /// than the skin) or would pass 32 per box, the detector steps aside for 64 detections and
-    /// detects without the skin. Must be finite and not
+/// Tuning of a Detector: the shared DetectionSettings and the skin. A Detector always detects
+/// with the persistent cuts (Pipeline::persistent_cuts).
+struct DetectorSettings : DetectionSettings {
+    /// How far, in the boxes' own units, each box is grown on every side to make a fat box.
+    /// 0, the default, detects from scratch at every call. A positive skin keeps the pairs of
+    /// fat boxes that overlap as candidates from one call to the next (a Verlet list): while
+    /// every box stays inside its fat box, a detection only tests the candidates, and the boxes
+    /// that left their fat box (or arrived) look for new ones. Worth it when boxes move much
+    /// less than the skin per call (a DEM code's "neighbour skin"; about the distance a body
+    /// travels in 10 to 50 steps, and a fraction of its size): the candidates grow with the
+    /// skin, the refreshes shrink. It holds about 40 bytes per box more, plus 8 per candidate.
+    /// Where a quarter of the boxes leave their fat box in one step, the candidates keep being
+    /// rebuilt (boxes that move farther than the skin) or would pass 32 per box, the detector
+    /// steps aside for 64 detections and detects without the skin. Must be finite and not
     /// negative.
     double skin = 0;
 };

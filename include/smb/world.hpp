@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <ranges>
 #include <span>
 #include <vector>
 
@@ -53,6 +54,10 @@ class WorldState;
 /// threads; one world must not be used from two threads at once, not even for detect().
 /// detect() itself may use WorldSettings::threads threads; the sink is always called from the
 /// thread that called detect().
+///
+/// Moving: a World moves in constant time and without throwing. The world moved from is left
+/// empty, holding nothing, with default settings (WorldSettings{}); every call is valid on it,
+/// and it can be used again as a new world.
 template <std::floating_point Real, int Dim>
 class World {
 public:
@@ -69,7 +74,8 @@ public:
 
     /// Adds a box. Throws DuplicateIdError if `id` is present, InvalidBoxError if invalid.
     void insert(BoxId id, const box_type& box);
-    /// Adds many boxes at once (all or none).
+    /// Adds many boxes at once (all or none). Throws DuplicateIdError if an id is present, or
+    /// named twice in `ids`.
     void insert(std::span<const BoxId> ids, std::span<const box_type> boxes);
 
     /// Removes a box. Throws UnknownIdError if `id` is absent.
@@ -97,8 +103,11 @@ public:
     [[nodiscard]] std::size_t size() const noexcept;
     [[nodiscard]] const WorldSettings& settings() const noexcept;
 
-    /// Reports every overlapping pair into `pairs` (cleared first). Throws PairLimitError when
-    /// there are more than settings().max_pairs_held pairs.
+    /// Replaces the contents of `pairs` by every overlapping pair. Throws PairLimitError when
+    /// there are more than settings().max_pairs_held pairs; whatever it throws, `pairs` holds
+    /// what it held before. The pairs are collected after the old contents and moved to the
+    /// front at the end: a caller who has no use for the old pairs clears `pairs` first and
+    /// saves that move (its capacity is kept either way).
     DetectStats detect(std::vector<Pair>& pairs);
     /// Reports every overlapping pair to `sink`, in chunks of settings().pair_chunk_size. An
     /// exception thrown by the sink ends the detection and propagates; the world stays valid and
@@ -116,6 +125,9 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept;
 
 private:
+    /// The state; a moved-from world (state_ null) gets a fresh one first.
+    detail::WorldState<Real, Dim>& state();
+
     std::unique_ptr<detail::WorldState<Real, Dim>> state_;
 };
 
@@ -128,5 +140,26 @@ using World3d = World<double, 3>;
 template <std::floating_point Real, int Dim>
 [[nodiscard]] std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> boxes,
                                                        const WorldSettings& settings = {});
+
+namespace detail {
+template <class T>
+inline constexpr bool is_box = false;
+template <std::floating_point Real, int Dim>
+inline constexpr bool is_box<Box<Real, Dim>> = true;
+}  // namespace detail
+
+/// A contiguous range of boxes of one type: std::vector, std::array, std::span (of const boxes
+/// or not), a C array.
+template <class Range>
+concept BoxRange = std::ranges::contiguous_range<const Range> && std::ranges::sized_range<const Range> &&
+                   detail::is_box<std::ranges::range_value_t<const Range>>;
+
+/// find_overlapping_pairs over any BoxRange: the same detection, over a span of its boxes.
+template <BoxRange Range>
+[[nodiscard]] std::vector<Pair> find_overlapping_pairs(const Range& boxes, const WorldSettings& settings = {}) {
+    using box_type = std::ranges::range_value_t<const Range>;
+    return find_overlapping_pairs<typename box_type::real_type, box_type::dimension>(
+        std::span<const box_type>(std::ranges::data(boxes), std::ranges::size(boxes)), settings);
+}
 
 }  // namespace smb

@@ -1,5 +1,5 @@
 #pragma once
-// The one check of WorldSettings that World and Detector share.
+// The checks of WorldSettings and DetectorSettings, over the DetectionSettings they share.
 
 #include <cmath>
 #include <cstddef>
@@ -12,18 +12,31 @@ namespace smb::detail {
 
 inline constexpr std::size_t kMaxThreads = 1024;
 
+/// Throws ArgumentError naming the first shared field that does not fit, as a field of
+/// `settings_name` (the class the caller handed over: the message names what they wrote).
+inline void check_detection_settings(const DetectionSettings& settings, const std::string& settings_name) {
+    if (settings.target_cell_population == 0)
+        throw ArgumentError(settings_name + "::target_cell_population must be at least 1");
+    if (settings.pair_chunk_size == 0) throw ArgumentError(settings_name + "::pair_chunk_size must be at least 1");
+    if (settings.threads > kMaxThreads)
+        throw ArgumentError(settings_name + "::threads must be at most " + std::to_string(kMaxThreads) +
+                            " (0: as many as OpenMP offers), not " + std::to_string(settings.threads));
+}
+
 /// `settings`, or ArgumentError naming the first field that does not fit.
 [[nodiscard]] inline WorldSettings validated_settings(const WorldSettings& settings) {
-    if (settings.target_cell_population == 0)
-        throw ArgumentError("WorldSettings::target_cell_population must be at least 1");
-    if (settings.pair_chunk_size == 0) throw ArgumentError("WorldSettings::pair_chunk_size must be at least 1");
+    check_detection_settings(settings, "WorldSettings");
     if (settings.pipeline != Pipeline::persistent_cuts && settings.pipeline != Pipeline::paper_lists)
         throw ArgumentError("WorldSettings::pipeline is not a known Pipeline");
-    if (settings.threads > kMaxThreads)
-        throw ArgumentError("WorldSettings::threads must be at most " + std::to_string(kMaxThreads) +
-                            " (0: as many as OpenMP offers), not " + std::to_string(settings.threads));
+    return settings;
+}
+
+/// `settings`, or ArgumentError naming the first field that does not fit.
+[[nodiscard]] inline DetectorSettings validated_settings(const DetectorSettings& settings) {
+    check_detection_settings(settings, "DetectorSettings");
     if (!(settings.skin >= 0) || !std::isfinite(settings.skin))
-        throw ArgumentError("WorldSettings::skin must be finite and at least 0");
+        throw ArgumentError("DetectorSettings::skin must be finite and at least 0, not " +
+                            std::to_string(settings.skin));
     return settings;
 }
 

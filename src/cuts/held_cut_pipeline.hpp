@@ -65,7 +65,7 @@ public:
                 precision_ = HeldPrecision::floats;
             } else {
                 rounded_ = RoundedPipeline();
-                precision_ = HeldPrecision::exact;
+                precision_ = HeldPrecision::doubles;
             }
         }
     }
@@ -74,7 +74,7 @@ public:
     /// where `ids` is empty) as judge() chose to hold them; `bounds` as judge() had them.
     template <class Report>
     void detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> ids,
-                const SceneBounds<Real, Dim>& bounds, const WorldSettings& settings, Report& report,
+                const SceneBounds<Real, Dim>& bounds, const DetectionSettings& settings, Report& report,
                 DetectStats& stats) {
         SMB_ASSERT(precision_ != HeldPrecision::none, "judge() chose what to hold");
         retested_ = 0;
@@ -89,7 +89,7 @@ public:
 
     /// A detection of no boxes: forgets the cuts, the order and the judgement.
     template <class Report>
-    void detect_nothing(const WorldSettings& settings, Report& report, DetectStats& stats) {
+    void detect_nothing(const DetectionSettings& settings, Report& report, DetectStats& stats) {
         clear();
         exact_.detect(std::span<const Box<Real, Dim>>{}, {}, settings, report, stats);
     }

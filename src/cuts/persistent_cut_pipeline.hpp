@@ -79,7 +79,7 @@ public:
     /// boxes are shifted by set_origin()'s origin and rounded (held_box.hpp), and each pair they
     /// cannot settle is tested again on `input`.
     template <class Report>
-    void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const WorldSettings& settings,
+    void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const DetectionSettings& settings,
                 Report& report, DetectStats& stats);
 
     /// The order the last detection left: every slot once, cell by cell.
@@ -168,8 +168,8 @@ private:
         bool overflowed = false;
     };
 
-    void plan_segments(std::size_t n, const WorldSettings& settings);
-    void plan_threads(const WorldSettings& settings);
+    void plan_segments(std::size_t n, const DetectionSettings& settings);
+    void plan_threads(const DetectionSettings& settings);
     double run_levels(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids,
                       DetectStats& stats);
     void gather_in_order(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids);
@@ -268,7 +268,7 @@ private:
 /// number of boxes; changed only when N has moved by more than a quarter, since a new count
 /// forgets every plane.
 template <std::floating_point Real, int Dim, std::floating_point Input>
-void PersistentCutPipeline<Real, Dim, Input>::plan_segments(std::size_t n, const WorldSettings& settings) {
+void PersistentCutPipeline<Real, Dim, Input>::plan_segments(std::size_t n, const DetectionSettings& settings) {
     const double cells = static_cast<double>(n) / static_cast<double>(settings.target_cell_population);
     const double ideal = std::clamp(std::pow(cells, 1.0 / Dim), 1.0, double{CutTree<Real, Dim>::kMaxSegments});
     const double current = cuts_.segments();
@@ -280,7 +280,7 @@ void PersistentCutPipeline<Real, Dim, Input>::plan_segments(std::size_t n, const
 template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Report>
 void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, Dim>> store_boxes,
-                                                     std::span<const BoxId> store_ids, const WorldSettings& settings,
+                                                     std::span<const BoxId> store_ids, const DetectionSettings& settings,
                                                      Report& report, DetectStats& stats) {
     const std::size_t n = store_boxes.size();
     input_ = store_boxes;
@@ -312,7 +312,7 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     if (cold) locate_without_hint_.fill(false);
     const std::span<const Box<Real, Dim>> boxes(ordered_);
     const double regrouping = std::chrono::duration<double>(Clock::now() - start).count();
-    stats.sort_seconds = cutting;
+    stats.quantile_seconds = cutting;
     stats.cut_regroup_seconds = regrouping - cutting;
     stats.cells = cuts_.cells();
 
@@ -374,9 +374,9 @@ double PersistentCutPipeline<Real, Dim, Input>::run_levels(std::span<const Box<I
     return cutting;
 }
 
-/// Threads: WorldSettings::threads, 0 for as many as OpenMP offers; one without OpenMP.
+/// Threads: DetectionSettings::threads, 0 for as many as OpenMP offers; one without OpenMP.
 template <std::floating_point Real, int Dim, std::floating_point Input>
-void PersistentCutPipeline<Real, Dim, Input>::plan_threads(const WorldSettings& settings) {
+void PersistentCutPipeline<Real, Dim, Input>::plan_threads(const DetectionSettings& settings) {
 #ifdef _OPENMP
     threads_ = settings.threads == 0 ? omp_get_max_threads() : static_cast<int>(settings.threads);
 #else

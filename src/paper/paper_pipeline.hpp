@@ -35,7 +35,7 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class PaperPipeline {
 public:
-    PaperPipeline(const BoxStore<Real, Dim>* store, const WorldSettings* settings)
+    PaperPipeline(const BoxStore<Real, Dim>* store, const DetectionSettings* settings)
         : store_(store), settings_(settings) {}
 
     /// Renumbers every list after BoxStore::compact() dropped removed slots, keeping each
@@ -79,7 +79,7 @@ private:
     void check_invariants() const;
 
     const BoxStore<Real, Dim>* store_;
-    const WorldSettings* settings_;
+    const DetectionSettings* settings_;
 
     std::array<Level, Dim> levels_;
     std::array<std::vector<Item>, Dim - 1> cell_lists_;  // the paper's Y2 (2D); Y2, Z2 (3D)
@@ -146,7 +146,7 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
         release_oversized_scratch();
         find_oversized();
         build_cell_lists();
-        stats.sort_seconds = sorting;
+        stats.list_sort_seconds = sorting;
         stats.cut_regroup_seconds = seconds_since(phase) - sorting;
         stats.cells = levels_[Dim - 1].segment_begin.size() - 1;
         stats.oversized_boxes = oversized_count_;

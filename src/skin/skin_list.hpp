@@ -65,7 +65,7 @@ public:
     template <class Report>
     bool detect(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
                 const std::array<Input, Dim>& scene_lo, const std::array<Input, Dim>& scene_hi, double skin,
-                const WorldSettings& settings, Report& report, DetectStats& stats) {
+                const DetectionSettings& settings, Report& report, DetectStats& stats) {
         input_ = input;
 #ifdef _OPENMP
         threads_ = std::max(1, settings.threads == 0 ? omp_get_max_threads() : static_cast<int>(settings.threads));
@@ -200,7 +200,7 @@ private:
     }
 
     /// The pipeline's pairs of fat boxes become the candidates; positions follow its new order.
-    bool rebuild(const WorldSettings& settings, DetectStats& stats) {
+    bool rebuild(const DetectionSettings& settings, DetectStats& stats) {
         rebuilt_ = true;
         const std::size_t n = input_.size();
         // held_ serves as the fat boxes by slot until the positions are known.
@@ -323,7 +323,7 @@ private:
         resize_with_slack(dirty_, (slot_of_.size() + 63) / 64);
         for (const Position p : fresh_) dirty_[p >> 6] |= std::uint64_t{1} << (p & 63);
         for (const Position p : gone_) dirty_[p >> 6] |= std::uint64_t{1} << (p & 63);
-        stats.update_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+        stats.containment_seconds += std::chrono::duration<double>(Clock::now() - start).count();
 
         const auto check_start = Clock::now();
         test_candidates(report, !fresh_.empty() || newly_gone);

@@ -1,5 +1,6 @@
 // A consumer of smb: two boxes that share a face must be reported as one overlapping pair, by a
-// World (under ids) and by a Detector (over an array, by index).
+// World (under ids), by a Detector (over an array, by index; with and without a skin) and by
+// find_overlapping_pairs over a std::vector.
 
 #include <smb/smb.hpp>
 
@@ -22,6 +23,15 @@ int main() {
     detector.detect(array, pairs);
     if (pairs.size() != 1 || pairs[0].a != 1 || pairs[0].b != 2) {
         std::cerr << "expected the single pair of indices (1, 2), got " << pairs.size() << " pairs\n";
+        return 1;
+    }
+    smb::DetectorSettings skinned;  // a Detector's own settings: the shared ones and a skin
+    skinned.skin = 0.1;
+    smb::Detector3d with_skin(skinned);
+    with_skin.detect(array, pairs);
+    const std::vector<smb::Pair> once = smb::find_overlapping_pairs(array);  // the vector as it is
+    if (pairs != once || once.size() != 1) {
+        std::cerr << "expected the single pair of indices (1, 2) with a skin and from find_overlapping_pairs\n";
         return 1;
     }
     std::cout << "smb " << SMB_VERSION_STRING << ": pair (10, 20) found, and indices (1, 2)\n";

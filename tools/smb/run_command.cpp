@@ -66,13 +66,13 @@ RunCommand::RunCommand(CLI::App& parent)
     add_environment_options(*app_, environment_);
     target_cell_population_ = WorldSettings{}.target_cell_population;
     app_->add_option("--cell-population", target_cell_population_,
-                     "boxes the axial cuts aim to put in one cell (WorldSettings)")
+                     "boxes the axial cuts aim to put in one cell (DetectionSettings)")
         ->check(at_least(1))
         ->capture_default_str();
-    // WorldSettings::threads takes at most 1024 (include/smb/settings.hpp); said here as an
+    // DetectionSettings::threads takes at most 1024 (include/smb/settings.hpp); said here as an
     // argument error rather than as the library's.
     app_->add_option("--threads", threads_,
-                     "threads detect() may use; 0 for as many as OpenMP offers (WorldSettings)")
+                     "threads detect() may use; 0 for as many as OpenMP offers (DetectionSettings)")
         ->check(in_closed_range(0, 1024))
         ->capture_default_str();
     app_->add_option("--pipeline", pipeline_,
@@ -83,7 +83,7 @@ RunCommand::RunCommand(CLI::App& parent)
         ->capture_default_str();
     app_->add_option("--skin", skin_,
                      "detector only: grow every box by this much on each side and keep the "
-                     "pairs of grown boxes from step to step (WorldSettings::skin; 0: off)")
+                     "pairs of grown boxes from step to step (DetectorSettings::skin; 0: off)")
         ->check(at_least(0))
         ->capture_default_str();
     auto* check_every = app_->add_option("--check-every", check_every_,
@@ -114,9 +114,7 @@ int RunCommand::run_in() const {
     // are indices into that array, turned into ids (outside the timing) where a step is checked.
     const bool through_detector = pipeline_ == "detector";
     workload::SwapRemoveMirror<Box<double, Dim>> mirror;
-    WorldSettings detector_settings = settings;
-    detector_settings.pipeline = Pipeline::persistent_cuts;
-    detector_settings.skin = skin_;
+    const DetectorSettings detector_settings{settings, skin_};  // the shared settings, and the skin
     Detector<double, Dim> detector(detector_settings);
 
     RunRecord run;
@@ -149,6 +147,7 @@ int RunCommand::run_in() const {
             workload::apply_changes(environment.changes(), world);
         }
         record.world_update_seconds = seconds_since(start);
+        pairs.clear();  // last step's pairs are not needed: detect() has none to keep
         start = Clock::now();
         const std::clock_t cpu_start = std::clock();
         record.stats = through_detector ? detector.detect(mirror.boxes(), pairs) : world.detect(pairs);

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "counted.hpp"
 
@@ -68,16 +69,62 @@ const StepQuantity pair_count = [](const StepRecord& s) {
 const StepQuantity box_count = [](const StepRecord& s) {
     return static_cast<double>(s.stats.boxes);
 };
-const StepQuantity sort_time = [](const StepRecord& s) { return s.stats.sort_seconds; };
+const StepQuantity update_time = [](const StepRecord& s) { return s.stats.update_seconds; };
+const StepQuantity scan_time = [](const StepRecord& s) { return s.stats.scan_seconds; };
+const StepQuantity containment_time = [](const StepRecord& s) { return s.stats.containment_seconds; };
+const StepQuantity quantile_time = [](const StepRecord& s) { return s.stats.quantile_seconds; };
+const StepQuantity list_sort_time = [](const StepRecord& s) { return s.stats.list_sort_seconds; };
 const StepQuantity cut_time = [](const StepRecord& s) { return s.stats.cut_regroup_seconds; };
 const StepQuantity check_time = [](const StepRecord& s) { return s.stats.check_seconds; };
 const StepQuantity skin_candidates = [](const StepRecord& s) { return static_cast<double>(s.stats.skin_candidates); };
 const StepQuantity skin_refreshed = [](const StepRecord& s) { return static_cast<double>(s.stats.skin_refreshed); };
-const StepQuantity list_update_time = [](const StepRecord& s) { return s.stats.update_seconds; };
 const StepQuantity copy_time = [](const StepRecord& s) { return s.stats.copy_seconds; };
 StepQuantity level_time(std::size_t level) {
     return [level](const StepRecord& s) { return s.stats.level_seconds[level]; };
 }
+/// A phase of DetectStats: its key in --json (the field's name without "_seconds"), its label in
+/// the text summary, and its time.
+struct Phase {
+    const char* key;
+    const char* label;
+    StepQuantity time;
+};
+
+/// Every phase, in the order of a detection: the keys of --json, whatever the pipeline.
+std::vector<Phase> all_phases() {
+    return {{"update", "update", update_time},         {"scan", "scan", scan_time},
+            {"containment", "containment", containment_time}, {"quantile", "quantiles", quantile_time},
+            {"list_sort", "list sort", list_sort_time},   {"cut_regroup", "cut+regroup", cut_time},
+            {"check", "check", check_time}};
+}
+
+/// The phases the run's pipeline has (the others stay zero): the lines of the text summary.
+std::vector<Phase> phases_of(const RunRecord& run) {
+    std::vector<Phase> phases;
+    for (const Phase& phase : all_phases()) {
+        const std::string key = phase.key;
+        const bool paper = run.pipeline == "paper";
+        const bool detector = run.pipeline == "detector";
+        if (key == "update" && detector) continue;
+        if ((key == "scan" || key == "quantile") && paper) continue;
+        if (key == "containment" && !(detector && run.skin > 0)) continue;
+        if (key == "list_sort" && !paper) continue;
+        phases.push_back(phase);
+    }
+    return phases;
+}
+
+/// "label time, label time, ..." for the phases of the run at one step, or their medians.
+template <class Value>
+std::string phases_text(const RunRecord& run, Value value) {
+    std::string text;
+    for (const Phase& phase : phases_of(run)) {
+        if (!text.empty()) text += ", ";
+        text += fmt::format("{} {}", phase.label, duration_text(value(phase.time)));
+    }
+    return text;
+}
+
 /// The axis of level `level` in `dimension`D: the levels cut the last axis first.
 char level_axis(int dimension, std::size_t level) { return "xyz"[static_cast<std::size_t>(dimension) - 1 - level]; }
 
@@ -95,9 +142,9 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
     line("pipeline", fmt::format("{}, {} thread{}", run.pipeline, run.threads, run.threads == 1 ? "" : "s"));
     if (!run.steps.empty()) {
         const StepRecord& build = run.steps.front();
-        line("build (step 1)", fmt::format("{} (sort {}, cut+regroup {}, check {})", duration_text(build.detect_seconds),
-                                           duration_text(sort_time(build)), duration_text(cut_time(build)),
-                                           duration_text(check_time(build))));
+        line("build (step 1)",
+             fmt::format("{} ({})", duration_text(build.detect_seconds),
+                         phases_text(run, [&](const StepQuantity& time) { return time(build); })));
     }
     if (run.steps.size() >= 2) {
         const Spread detect = spread_after_build(run, detect_time);
@@ -106,10 +153,8 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
                          duration_text(detect.median), duration_text(detect.mean), duration_text(detect.min),
                          duration_text(detect.max),
                          duration_text(median_after_build(run, detect_cpu_time))));
-        line("phases (median)", fmt::format("sort {}, cut+regroup {}, check {}",
-                                            duration_text(median_after_build(run, sort_time)),
-                                            duration_text(median_after_build(run, cut_time)),
-                                            duration_text(median_after_build(run, check_time))));
+        line("phases (median)",
+             phases_text(run, [&](const StepQuantity& time) { return median_after_build(run, time); }));
         if (run.pipeline != "paper") {
             std::string levels = "copy " + duration_text(median_after_build(run, copy_time));
             for (std::size_t level = 0; level < static_cast<std::size_t>(run.dimension); ++level) {
@@ -198,20 +243,17 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     }
     summary["build_seconds"] =
         run.steps.empty() ? json(nullptr) : json(run.steps.front().detect_seconds);
-    summary["build_phase_seconds"] =
-        run.steps.empty() ? json(nullptr)
-                          : json{{"sort", sort_time(run.steps.front())},
-                                 {"cut_regroup", cut_time(run.steps.front())},
-                                 {"check", check_time(run.steps.front())}};
+    json build_phases = json::object();
+    json median_phases = json::object();
+    for (const Phase& phase : all_phases()) {
+        if (!run.steps.empty()) build_phases[phase.key] = phase.time(run.steps.front());
+        if (has_later_steps) median_phases[phase.key] = median_after_build(run, phase.time);
+    }
+    summary["build_phase_seconds"] = run.steps.empty() ? json(nullptr) : build_phases;
     summary["detect_seconds"] = spread_json(detect_time);
     summary["detect_cpu_seconds"] = spread_json(detect_cpu_time);
     summary["world_update_seconds_median"] = median_json(world_update_time);
-    summary["phase_seconds_median"] =
-        has_later_steps ? json{{"list_update", median_after_build(run, list_update_time)},
-                               {"sort", median_after_build(run, sort_time)},
-                               {"cut_regroup", median_after_build(run, cut_time)},
-                               {"check", median_after_build(run, check_time)}}
-                        : json(nullptr);
+    summary["phase_seconds_median"] = has_later_steps ? median_phases : json(nullptr);
     if (has_later_steps && run.pipeline != "paper") {
         json levels = json::object();
         for (std::size_t level = 0; level < static_cast<std::size_t>(run.dimension); ++level)

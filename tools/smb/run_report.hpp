@@ -52,7 +52,7 @@ struct RunRecord {
     std::size_t target_cell_population = 0;
     std::string pipeline;      ///< "persistent", "paper" or "detector"
     std::size_t threads = 1;   ///< threads detect() used
-    double skin = 0;           ///< WorldSettings::skin of the detector (0: none)
+    double skin = 0;           ///< DetectorSettings::skin of the detector (0: none)
     std::vector<StepRecord> steps;
     std::size_t bytes_held = 0;  ///< world.bytes_held() after the last step
     /// The process's peak resident memory at the end: the world, the environment that feeds it

@@ -1,0 +1,104 @@
+// DetectStats: each phase field means one thing in every pipeline, and is zero where the
+// pipeline has no such phase (smb/stats.hpp).
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "smb/smb.hpp"
+
+namespace smb {
+namespace {
+
+std::vector<Box3d> random_scene(std::size_t n, unsigned seed) {
+    std::mt19937_64 random(seed);
+    std::uniform_real_distribution<double> place(0.0, 40.0);
+    std::vector<Box3d> boxes;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double x = place(random), y = place(random), z = place(random);
+        boxes.push_back(Box3d{{x, y, z}, {x + 1, y + 1, z + 1}});
+    }
+    return boxes;
+}
+
+double phases(const DetectStats& stats) {
+    return stats.update_seconds + stats.scan_seconds + stats.containment_seconds + stats.quantile_seconds +
+           stats.list_sort_seconds + stats.cut_regroup_seconds + stats.check_seconds;
+}
+
+/// A world's build, then a step that removed boxes.
+std::pair<DetectStats, DetectStats> world_build_and_removal(Pipeline pipeline) {
+    WorldSettings settings;
+    settings.pipeline = pipeline;
+    World3d world(settings);
+    const std::vector<Box3d> boxes = random_scene(20000, 1);
+    world.assign(boxes);
+    std::vector<Pair> pairs;
+    const DetectStats build = world.detect(pairs);
+    std::vector<BoxId> doomed;
+    for (BoxId id = 0; id < 2000; ++id) doomed.push_back(id * 7);
+    world.remove(doomed);
+    const DetectStats step = world.detect(pairs);
+    return {build, step};
+}
+
+TEST(DetectStats, PersistentCutsSelectQuantilesAndSortNoLists) {
+    const auto [build, step] = world_build_and_removal(Pipeline::persistent_cuts);
+    EXPECT_GT(build.quantile_seconds, 0.0) << "the first detection cuts every group";
+    EXPECT_GT(build.scan_seconds, 0.0);
+    EXPECT_EQ(build.list_sort_seconds, 0.0);
+    EXPECT_EQ(build.update_seconds, 0.0) << "nothing to take out";
+    EXPECT_EQ(build.containment_seconds, 0.0);
+    EXPECT_GT(step.update_seconds, 0.0) << "the removals are taken out";
+    EXPECT_EQ(step.list_sort_seconds, 0.0);
+    for (const DetectStats& stats : {build, step}) EXPECT_LE(phases(stats), stats.total_seconds);
+}
+
+TEST(DetectStats, PaperListsSortListsAndSelectNoQuantiles) {
+    const auto [build, step] = world_build_and_removal(Pipeline::paper_lists);
+    EXPECT_GT(build.list_sort_seconds, 0.0);
+    EXPECT_GT(step.list_sort_seconds, 0.0);
+    EXPECT_GT(step.update_seconds, 0.0);
+    for (const DetectStats& stats : {build, step}) {
+        EXPECT_EQ(stats.quantile_seconds, 0.0);
+        EXPECT_EQ(stats.scan_seconds, 0.0) << "the paper's lists hold the boxes as they are";
+        EXPECT_EQ(stats.containment_seconds, 0.0);
+        EXPECT_EQ(stats.copy_seconds, 0.0);
+        EXPECT_LE(phases(stats), stats.total_seconds);
+    }
+}
+
+TEST(DetectStats, DetectorScansItsInputAndHasNoUpdates) {
+    for (const double skin : {0.0, 0.1}) {
+        DetectorSettings settings;
+        settings.skin = skin;
+        Detector3d detector(settings);
+        std::vector<Box3d> boxes = random_scene(20000, 2);
+        std::vector<Pair> pairs;
+        const DetectStats build = detector.detect(boxes, pairs);
+        for (Box3d& box : boxes) {
+            box.min[0] += 0.01;
+            box.max[0] += 0.01;
+        }
+        const DetectStats step = detector.detect(boxes, pairs);
+        SCOPED_TRACE(::testing::Message() << "skin " << skin);
+        EXPECT_GT(build.quantile_seconds, 0.0);
+        for (const DetectStats& stats : {build, step}) {
+            EXPECT_EQ(stats.update_seconds, 0.0);
+            EXPECT_GT(stats.scan_seconds, 0.0);
+            EXPECT_EQ(stats.list_sort_seconds, 0.0);
+            EXPECT_LE(phases(stats), stats.total_seconds);
+        }
+        // With a skin, the step after the build checks every box against its fat box.
+        if (skin > 0) {
+            EXPECT_FALSE(step.skin_rebuilt);
+            EXPECT_GT(step.containment_seconds, 0.0);
+        } else {
+            EXPECT_EQ(step.containment_seconds, 0.0);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace smb
