@@ -25,9 +25,15 @@ template <int Dim>
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_box_pruning_peer();
 
-/// A uniform grid rebuilt from scratch every step (spatial subdivision).
+/// A uniform grid rebuilt from scratch every step: each box in the cell of its lower corner,
+/// cells the size of the largest box, tested against their neighbours (peers/uniform_grid.hpp).
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_uniform_grid_peer();
+
+/// A uniform grid rebuilt from scratch every step with each box in every cell it overlaps,
+/// cells twice the mean box size: the textbook scheme.
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_uniform_grid_every_cell_peer();
 
 /// CGAL's box_intersection_d on closed boxes, stateless, every step from scratch.
 template <int Dim>

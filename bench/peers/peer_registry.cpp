@@ -14,6 +14,7 @@ std::vector<PeerInfo> available_peers() {
         {"brute_force", true, true},
         {"box_pruning", true, true},
         {"uniform_grid", true, true},
+        {"uniform_grid_every_cell", true, true},
     };
 #if SMB_BENCH_HAVE_CGAL
     peers.push_back({"cgal_box_intersection", true, true});
@@ -63,6 +64,7 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
     if (name == "brute_force") return make_brute_force_peer<Dim>();
     if (name == "box_pruning") return make_box_pruning_peer<Dim>();
     if (name == "uniform_grid") return make_uniform_grid_peer<Dim>();
+    if (name == "uniform_grid_every_cell") return make_uniform_grid_every_cell_peer<Dim>();
 #if SMB_BENCH_HAVE_CGAL
     if (name == "cgal_box_intersection") return make_cgal_box_intersection_peer<Dim>();
 #endif
