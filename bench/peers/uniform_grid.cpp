@@ -154,35 +154,47 @@ void UniformGrid<Dim>::sort_into_cells(std::span<const BenchBox<Dim>> boxes, std
 // Each cell against itself and its upper-half neighbours: (+1, 0, 0), (-1..1, +1, 0) and
 // (-1..1, -1..1, +1) in 3D; (+1, 0) and (-1..1, +1) in 2D. A pair of overlapping boxes whose
 // lower corners lie in cells a and b is tested from a if b - a is in that half, from b otherwise.
+// A box whose upper corner stays in its own cell on an axis cannot overlap a box whose lower
+// corner lies in the next cell on that axis (the cell coordinate is monotone), so those
+// neighbours are skipped for it: about 40% of the tests on boxes of similar size.
 template <int Dim>
 void UniformGrid<Dim>::pairs_in_cells(std::vector<Pair>& pairs) const {
-    // Offsets of the neighbour rows, each tested from x - 1 to x + 1.
-    std::array<std::int64_t, Dim == 3 ? 4 : 1> rows{};
-    if constexpr (Dim == 3) rows = {stride_[1], stride_[2] - stride_[1], stride_[2], stride_[2] + stride_[1]};
-    else rows = {stride_[1]};
     const Index* begin = cell_begin_.data();
     const Record* records = records_.data();
     auto test_range = [&](const Record& a, Index from, Index to) {
         for (Index j = from; j < to; ++j)
             if (overlap(a, records[j])) pairs.push_back(ordered_pair(a.id, records[j].id));
     };
-    auto visit_row = [&](std::int64_t row_start) {
-        for (std::int64_t cell = row_start + 1; cell <= row_start + cells_[0]; ++cell) {
+    // Cells [cell - 1, cell + 1] of a neighbour row, the last one only when the box reaches it.
+    auto test_row = [&](const Record& a, std::int64_t cell, std::int64_t reaches_x) {
+        test_range(a, begin[cell - 1], begin[cell + 1 + reaches_x]);
+    };
+    auto visit_row = [&](std::int64_t row_start, std::array<std::int64_t, Dim> at) {
+        for (std::int64_t x = 1; x <= cells_[0]; ++x) {
+            const std::int64_t cell = row_start + x;
             const Index first = begin[cell], end = begin[cell + 1];
             if (first == end) continue;
-            const Index end_of_next = begin[cell + 2];
+            at[0] = x;
             for (Index i = first; i < end; ++i) {
                 const Record& a = records[i];
-                test_range(a, i + 1, end_of_next);
-                for (const std::int64_t row : rows) test_range(a, begin[cell + row - 1], begin[cell + row + 2]);
+                std::array<std::int64_t, Dim> reaches{};
+                for (int k = 0; k < Dim; ++k) reaches[k] = lower_corner_coordinate(a.max[k], k) + 1 > at[k];
+                test_range(a, i + 1, begin[cell + 1 + reaches[0]]);
+                if (reaches[1]) test_row(a, cell + stride_[1], reaches[0]);
+                if constexpr (Dim == 3) {
+                    if (!reaches[2]) continue;
+                    test_row(a, cell + stride_[2] - stride_[1], reaches[0]);
+                    test_row(a, cell + stride_[2], reaches[0]);
+                    if (reaches[1]) test_row(a, cell + stride_[2] + stride_[1], reaches[0]);
+                }
             }
         }
     };
     if constexpr (Dim == 3) {
         for (std::int64_t z = 1; z <= cells_[2]; ++z)
-            for (std::int64_t y = 1; y <= cells_[1]; ++y) visit_row(z * stride_[2] + y * stride_[1]);
+            for (std::int64_t y = 1; y <= cells_[1]; ++y) visit_row(z * stride_[2] + y * stride_[1], {0, y, z});
     } else {
-        for (std::int64_t y = 1; y <= cells_[1]; ++y) visit_row(y * stride_[1]);
+        for (std::int64_t y = 1; y <= cells_[1]; ++y) visit_row(y * stride_[1], {0, y});
     }
 }
 

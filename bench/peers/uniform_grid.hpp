@@ -72,10 +72,16 @@ private:
         const double raw = std::floor((value - low_[axis]) * inverse_side_[axis]);
         return static_cast<std::int64_t>(std::clamp(raw, 0.0, static_cast<double>(cells_[axis] - 1)));
     }
-    /// Flat index in the padded array of the cell holding point `corner`.
+    /// The same for a value no lower than the grid's lowest lower corner, such as any coordinate
+    /// of a box in the grid: truncation is the floor there, and far cheaper.
+    [[nodiscard]] std::int64_t lower_corner_coordinate(float value, int axis) const noexcept {
+        const auto raw = static_cast<std::int64_t>((static_cast<double>(value) - low_[axis]) * inverse_side_[axis]);
+        return std::min(raw, cells_[axis] - 1);
+    }
+    /// Flat index in the padded array of the cell holding the lower corner of a box in the grid.
     [[nodiscard]] Index flat_cell(const std::array<float, Dim>& corner) const noexcept {
         std::int64_t index = 0;
-        for (int k = 0; k < Dim; ++k) index += (cell_coordinate(corner[k], k) + 1) * stride_[k];
+        for (int k = 0; k < Dim; ++k) index += (lower_corner_coordinate(corner[k], k) + 1) * stride_[k];
         return static_cast<Index>(index);
     }
 
