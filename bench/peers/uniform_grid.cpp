@@ -147,7 +147,7 @@ void UniformGrid<Dim>::sort_into_cells(std::span<const BenchBox<Dim>> boxes, std
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         const Index cell = cell_of_box_[i];
         if (cell == not_in_grid) continue;
-        records_[cell_begin_[cell + 1]++] = Record{boxes[i].min, boxes[i].max, ids[i]};
+        records_[cell_begin_[cell + 1]++] = record_of(boxes[i], ids[i]);
     }
 }
 
@@ -161,13 +161,13 @@ template <int Dim>
 void UniformGrid<Dim>::pairs_in_cells(std::vector<Pair>& pairs) const {
     const Index* begin = cell_begin_.data();
     const Record* records = records_.data();
-    auto test_range = [&](const Record& a, Index from, Index to) {
+    auto test_range = [&](const Query& query, BoxId id, Index from, Index to) {
         for (Index j = from; j < to; ++j)
-            if (overlap(a, records[j])) pairs.push_back(ordered_pair(a.id, records[j].id));
+            if (overlap(query, records[j])) pairs.push_back(ordered_pair(id, records[j].id));
     };
     // Cells [cell - 1, cell + 1] of a neighbour row, the last one only when the box reaches it.
-    auto test_row = [&](const Record& a, std::int64_t cell, std::int64_t reaches_x) {
-        test_range(a, begin[cell - 1], begin[cell + 1 + reaches_x]);
+    auto test_row = [&](const Query& query, BoxId id, std::int64_t cell, std::int64_t reaches_x) {
+        test_range(query, id, begin[cell - 1], begin[cell + 1 + reaches_x]);
     };
     auto visit_row = [&](std::int64_t row_start, std::array<std::int64_t, Dim> at) {
         for (std::int64_t x = 1; x <= cells_[0]; ++x) {
@@ -176,16 +176,17 @@ void UniformGrid<Dim>::pairs_in_cells(std::vector<Pair>& pairs) const {
             if (first == end) continue;
             at[0] = x;
             for (Index i = first; i < end; ++i) {
-                const Record& a = records[i];
+                const Query a = query_of(records[i]);
+                const BoxId id = records[i].id;
                 std::array<std::int64_t, Dim> reaches{};
-                for (int k = 0; k < Dim; ++k) reaches[k] = lower_corner_coordinate(a.max[k], k) + 1 > at[k];
-                test_range(a, i + 1, begin[cell + 1 + reaches[0]]);
-                if (reaches[1]) test_row(a, cell + stride_[1], reaches[0]);
+                for (int k = 0; k < Dim; ++k) reaches[k] = lower_corner_coordinate(a.lanes[k], k) + 1 > at[k];
+                test_range(a, id, i + 1, begin[cell + 1 + reaches[0]]);
+                if (reaches[1]) test_row(a, id, cell + stride_[1], reaches[0]);
                 if constexpr (Dim == 3) {
                     if (!reaches[2]) continue;
-                    test_row(a, cell + stride_[2] - stride_[1], reaches[0]);
-                    test_row(a, cell + stride_[2], reaches[0]);
-                    if (reaches[1]) test_row(a, cell + stride_[2] + stride_[1], reaches[0]);
+                    test_row(a, id, cell + stride_[2] - stride_[1], reaches[0]);
+                    test_row(a, id, cell + stride_[2], reaches[0]);
+                    if (reaches[1]) test_row(a, id, cell + stride_[2] + stride_[1], reaches[0]);
                 }
             }
         }
@@ -205,6 +206,7 @@ void UniformGrid<Dim>::oversized_against_cells(std::vector<Pair>& pairs) const {
     const Index* begin = cell_begin_.data();
     for (std::size_t o = 0; o < oversized_boxes_.size(); ++o) {
         const BenchBox<Dim>& box = oversized_boxes_[o];
+        const Query query = query_of(box.min, box.max);
         std::array<std::int64_t, Dim> from{}, to{};
         for (int k = 0; k < Dim; ++k) {
             from[k] = cell_coordinate(static_cast<double>(box.min[k]) - largest_extent_[k], k) + 1;
@@ -212,7 +214,7 @@ void UniformGrid<Dim>::oversized_against_cells(std::vector<Pair>& pairs) const {
         }
         auto test_row = [&](std::int64_t row_start) {
             for (Index j = begin[row_start + from[0]]; j < begin[row_start + to[0] + 1]; ++j)
-                if (overlap(box, records_[j])) pairs.push_back(ordered_pair(oversized_ids_[o], records_[j].id));
+                if (overlap(query, records_[j])) pairs.push_back(ordered_pair(oversized_ids_[o], records_[j].id));
         };
         if constexpr (Dim == 3) {
             for (std::int64_t z = from[2]; z <= to[2]; ++z)

@@ -29,6 +29,10 @@
 #include <span>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "scenes/scene.hpp"
 #include "smb/pair.hpp"
 
@@ -45,11 +49,16 @@ public:
     [[nodiscard]] std::size_t oversized_count() const noexcept { return oversized_ids_.size(); }
 
 private:
-    /// A box in cell order: what the pair tests read, in one record.
+    /// A box in cell order: what the pair tests read, in one record. The upper corner is stored
+    /// negated, so that the closed overlap test is one "lower or equal" on all 2 * Dim lanes:
+    /// b.min <= a.max and -b.max <= -a.min (negation is exact).
     struct Record {
-        std::array<float, Dim> min;
-        std::array<float, Dim> max;
+        std::array<float, 2 * Dim> lanes;  ///< min, then -max
         BoxId id;
+    };
+    /// What a box tests records against: its max, then -min.
+    struct Query {
+        std::array<float, 2 * Dim> lanes;
     };
     using Index = std::uint32_t;
     static constexpr Index not_in_grid = std::numeric_limits<Index>::max();
@@ -85,15 +94,50 @@ private:
         return static_cast<Index>(index);
     }
 
-    static bool overlap(const Record& a, const Record& b) noexcept {
-        bool result = true;
-        for (int k = 0; k < Dim; ++k) result &= (a.min[k] <= b.max[k]) & (b.min[k] <= a.max[k]);
-        return result;
+    static Query query_of(const std::array<float, Dim>& min, const std::array<float, Dim>& max) noexcept {
+        Query query;
+        for (int k = 0; k < Dim; ++k) {
+            query.lanes[k] = max[k];
+            query.lanes[Dim + k] = -min[k];
+        }
+        return query;
     }
-    static bool overlap(const BenchBox<Dim>& a, const Record& b) noexcept {
+    static Query query_of(const Record& record) noexcept {
+        Query query;
+        for (int k = 0; k < Dim; ++k) {
+            query.lanes[k] = -record.lanes[Dim + k];
+            query.lanes[Dim + k] = -record.lanes[k];
+        }
+        return query;
+    }
+    static Record record_of(const BenchBox<Dim>& box, BoxId id) noexcept {
+        Record record;
+        for (int k = 0; k < Dim; ++k) {
+            record.lanes[k] = box.min[k];
+            record.lanes[Dim + k] = -box.max[k];
+        }
+        record.id = id;
+        return record;
+    }
+    [[nodiscard]] static float max_of(const Record& record, int axis) noexcept { return -record.lanes[Dim + axis]; }
+
+    static bool overlap(const Query& query, const Record& record) noexcept {
+#if defined(__SSE2__)
+        if constexpr (Dim == 3) {
+            const __m128 low = _mm_cmple_ps(_mm_loadu_ps(record.lanes.data()), _mm_loadu_ps(query.lanes.data()));
+            // The last two lanes: 64-bit loads (__m128i may alias anything).
+            const __m128 high =
+                _mm_cmple_ps(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&record.lanes[4]))),
+                             _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&query.lanes[4]))));
+            return ((_mm_movemask_ps(low) | (_mm_movemask_ps(high) << 4)) & 0x3F) == 0x3F;
+        } else {
+            return _mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(record.lanes.data()), _mm_loadu_ps(query.lanes.data()))) == 0xF;
+        }
+#else
         bool result = true;
-        for (int k = 0; k < Dim; ++k) result &= (a.min[k] <= b.max[k]) & (b.min[k] <= a.max[k]);
+        for (int k = 0; k < 2 * Dim; ++k) result &= record.lanes[k] <= query.lanes[k];
         return result;
+#endif
     }
 
     std::array<float, Dim> oversize_limit_{};
