@@ -13,6 +13,10 @@ namespace smb::bench {
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_world_peer(const WorldSettings& settings);
 
+/// The same over double coordinates (the scene's float boxes widened, untimed, beforehand).
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_world_double_peer(const WorldSettings& settings);
+
 /// smb::Detector over an array in which each body keeps its index (no ids inside smb).
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const WorldSettings& settings);

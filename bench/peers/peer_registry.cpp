@@ -6,6 +6,7 @@ std::vector<PeerInfo> available_peers() {
     std::vector<PeerInfo> peers = {
         {"smb", true, true},
         {"smb_2threads", true, true},
+        {"smb_double", true, true},
         {"smb_paper", true, true},
         {"smb_detector", true, true},
         {"smb_detector_2threads", true, true},
@@ -37,6 +38,7 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
         settings.threads = 2;
         return make_smb_world_peer<Dim>(settings);
     }
+    if (name == "smb_double") return make_smb_world_double_peer<Dim>(WorldSettings{});
     if (name == "smb_paper") {
         WorldSettings settings;
         settings.pipeline = Pipeline::paper_lists;
