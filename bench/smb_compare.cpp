@@ -4,6 +4,7 @@
 
 #include <malloc.h>
 #include <sys/resource.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -43,7 +44,8 @@ constexpr const char* usage_text =
     "(the harness's own memory). --no-check skips the untimed exact-overlap check.\n"
     "Times: first_step_s (the build), early_median_s (median of steps 1..E after it, E = 10 by\n"
     "default), steady_median_s (median of the steps after those; 0 when S <= E), median_step_s\n"
-    "(median of all S steps after the build) and step_s (every step after the build).\n";
+    "(median of all S steps after the build) and step_s (every step after the build); the\n"
+    "same in CPU seconds of the process, all threads (*_cpu_s).\n";
 
 std::size_t peak_rss_bytes() {
     rusage usage{};
@@ -79,6 +81,14 @@ void reset_resident_peak() {
     malloc_trim(0);
     std::ofstream clear_refs("/proc/self/clear_refs");
     clear_refs << "5" << std::endl;
+}
+
+// CPU seconds of the whole process (all its threads): on a machine shared with other work it
+// shows what a single-threaded method costs without the time it waited for a core.
+double process_cpu_seconds() {
+    timespec now{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 double median_of(std::vector<double> values) {
@@ -118,10 +128,10 @@ int run(const RunOptions& options) {
 
     std::vector<Pair> pairs;
     std::vector<std::uint32_t> position_of_id;
-    std::vector<double> step_seconds;
+    std::vector<double> step_seconds, step_cpu_seconds;
     std::vector<std::uint64_t> digests;
     std::vector<std::size_t> pair_counts;
-    double first_seconds = 0;
+    double first_seconds = 0, first_cpu_seconds = 0;
     std::size_t first_boxes = 0, most_boxes = 0, pair_capacity = 0, resident_before = 0;
     bool pair_list_grew = false;  // then the method's heap count includes the pair list
 
@@ -139,6 +149,7 @@ int run(const RunOptions& options) {
         if (pairs.capacity() < wanted) pairs.reserve(wanted);
         const std::size_t capacity_before = pairs.capacity();
         if (peer) peer->prepare(step);
+        const double cpu_start = process_cpu_seconds();
         const auto start = Clock::now();
         if (peer) {
             const heap_meter::CountingScope count_method_heap;
@@ -146,9 +157,15 @@ int run(const RunOptions& options) {
             else peer->step(step, pairs);
         }
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        const double cpu_seconds = process_cpu_seconds() - cpu_start;
         if (pairs.capacity() != capacity_before) pair_list_grew = true;
-        if (index == 0) first_seconds = seconds;
-        else step_seconds.push_back(seconds);
+        if (index == 0) {
+            first_seconds = seconds;
+            first_cpu_seconds = cpu_seconds;
+        } else {
+            step_seconds.push_back(seconds);
+            step_cpu_seconds.push_back(cpu_seconds);
+        }
         pair_capacity = std::max(pair_capacity, pairs.capacity());
         if (options.check_overlaps) check_exact(step, pairs, position_of_id);
         pair_counts.push_back(pairs.size());
@@ -157,9 +174,11 @@ int run(const RunOptions& options) {
 
     // The steps right after the build apart from the later ones: a method may still be settling
     // in them (smb's lists are sorted from scratch by the build, a tree's shape is young).
-    const auto early_end = step_seconds.begin() + static_cast<std::ptrdiff_t>(std::min(options.early_steps, step_seconds.size()));
-    const std::vector<double> early(step_seconds.begin(), early_end);
-    const std::vector<double> steady(early_end, step_seconds.end());
+    const auto early_count = static_cast<std::ptrdiff_t>(std::min(options.early_steps, step_seconds.size()));
+    const std::vector<double> early(step_seconds.begin(), step_seconds.begin() + early_count);
+    const std::vector<double> steady(step_seconds.begin() + early_count, step_seconds.end());
+    const std::vector<double> early_cpu(step_cpu_seconds.begin(), step_cpu_seconds.begin() + early_count);
+    const std::vector<double> steady_cpu(step_cpu_seconds.begin() + early_count, step_cpu_seconds.end());
 
     std::ostringstream json;
     json << "{\"method\":\"" << options.method << "\",\"family\":\"" << options.scene.family
@@ -168,7 +187,8 @@ int run(const RunOptions& options) {
          << ",\"max_boxes\":" << most_boxes << ",\"first_step_s\":" << first_seconds
          << ",\"median_step_s\":" << median_of(step_seconds) << ",\"early_steps\":" << early.size()
          << ",\"early_median_s\":" << median_of(early) << ",\"steady_median_s\":" << median_of(steady)
-         << ",\"min_step_s\":"
+         << ",\"first_step_cpu_s\":" << first_cpu_seconds << ",\"early_median_cpu_s\":" << median_of(early_cpu)
+         << ",\"steady_median_cpu_s\":" << median_of(steady_cpu) << ",\"min_step_s\":"
          << (step_seconds.empty() ? 0.0 : *std::min_element(step_seconds.begin(), step_seconds.end()))
          << ",\"peak_rss_bytes\":" << peak_rss_bytes() << ",\"resident_before_bytes\":" << resident_before
          << ",\"resident_peak_bytes\":" << resident_peak_bytes() << ",\"heap_meter\":"
