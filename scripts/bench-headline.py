@@ -133,7 +133,7 @@ def main():
         boxes = args.boxes_3d if dim == 3 else args.boxes_2d
         results = []
         for method in methods + [m for m in extra if m not in methods]:
-            if only is not None and method not in only:
+            if only is not None and method not in only and method not in extra:
                 continue
             if f"{dim}d" not in available.get(method, ""):
                 print(f"[{dim}D Λ={update_factor:g}] {method} is not in this build, left out", flush=True)

@@ -11,6 +11,8 @@
 //   neighbour lookups need no bounds checks. A counting sort places the boxes, copied with their
 //   ids into 32-byte (3D) records, in cell order: cells along x are adjacent in memory, so each
 //   neighbour row (x-1, x, x+1) is one contiguous range, and a cell plus its x+1 neighbour too.
+// - A box skips the upper neighbours its upper corner does not reach (about 40% of the tests),
+//   and tests a record with one SSE comparison (records hold min and -max).
 // - Boxes far larger than the rest ("oversized": an extent above twice the 95th percentile of a
 //   sample) would inflate every cell; they stay out of the grid, each is tested against the
 //   cells its lower-corner window covers, and they are paired among themselves by a nested grid.
@@ -119,7 +121,6 @@ private:
         record.id = id;
         return record;
     }
-    [[nodiscard]] static float max_of(const Record& record, int axis) noexcept { return -record.lanes[Dim + axis]; }
 
     static bool overlap(const Query& query, const Record& record) noexcept {
 #if defined(__SSE2__)
