@@ -14,7 +14,7 @@ Writes bench/results/<machine>/<name>.csv, .jsonl (smb_compare's lines) and .md:
 method the build step, the median of the ten steps after it, the median of the later (steady)
 steps, and each as a ratio grid ÷ method (above 1: faster than the grid).
 Usage: scripts/bench-headline.py --build-dir build-bench [--name headline] [--steps 40]
-       [--boxes-3d 1000000] [--boxes-2d 100000] [--only METHOD,...]
+       [--boxes-3d 1000000] [--boxes-2d 100000] [--rounds 1] [--only METHOD,...] [--extra METHOD,...]
 """
 
 import argparse
@@ -22,6 +22,7 @@ import csv
 import datetime
 import json
 import os
+import statistics
 import subprocess
 import sys
 import time
@@ -40,6 +41,8 @@ LABEL = {"uniform_grid": "uniform grid", "smb": "smb World float", "smb_double":
          "smb_detector_2threads": "smb Detector, 2 threads", "smb_detector_skin": "smb Detector, skin 0.1",
          "bullet_dbvt": "Bullet btDbvtBroadphase", "box2d_dynamic_tree": "Box2D b2DynamicTree",
          "uniform_grid_every_cell": "textbook grid (every cell)"}
+TIMES = ["first_step_s", "early_median_s", "steady_median_s", "median_step_s", "first_step_cpu_s", "early_median_cpu_s",
+         "steady_median_cpu_s", "wall_s"]
 FIELDS = ["dim", "lambda", "boxes", "steps", "method", "first_step_ms", "early_median_ms", "steady_median_ms",
           "median_step_ms", "first_step_cpu_ms", "early_median_cpu_ms", "steady_median_cpu_ms", "grid_over_first", "grid_over_early", "grid_over_steady", "pairs_last", "agrees",
           "bytes_per_box", "wall_s"]
@@ -56,6 +59,16 @@ def run_one(binary, method, dim, boxes, update_factor, steps, early_steps):
     result = json.loads(done.stdout.strip().splitlines()[-1])
     result["wall_s"] = time.monotonic() - started
     return result, ""
+
+
+def merge_rounds(results):
+    """One result whose times are the medians over the rounds; digests and pairs of the first
+    round (every round's digests must agree: the scene is the same)."""
+    merged = dict(results[0])
+    for key in TIMES:
+        merged[key] = statistics.median(r[key] for r in results)
+    merged["digests_differ"] = any(r["digests"] != results[0]["digests"] for r in results)
+    return merged
 
 
 def load_average():
@@ -113,6 +126,8 @@ def main():
     parser.add_argument("--early-steps", type=int, default=10, help="steps after the build counted as early")
     parser.add_argument("--boxes-3d", type=int, default=1_000_000)
     parser.add_argument("--boxes-2d", type=int, default=100_000)
+    parser.add_argument("--rounds", type=int, default=1,
+                        help="runs of every method, alternating; the tables show the median (default 1)")
     parser.add_argument("--only", default="", help="comma-separated methods to run (the grid always runs)")
     parser.add_argument("--extra", default="", help="comma-separated methods added to every scene")
     parser.add_argument("--results-dir", default=os.path.join(os.path.dirname(__file__), "..", "bench", "results"))
@@ -131,27 +146,39 @@ def main():
     rows, raw_lines, problems = [], [], []
     for dim, update_factor, methods in SCENES:
         boxes = args.boxes_3d if dim == 3 else args.boxes_2d
-        results = []
+        chosen = []
         for method in methods + [m for m in extra if m not in methods]:
             if only is not None and method not in only and method not in extra:
                 continue
             if f"{dim}d" not in available.get(method, ""):
                 print(f"[{dim}D Λ={update_factor:g}] {method} is not in this build, left out", flush=True)
                 continue
-            result, why = run_one(binary, method, dim, boxes, update_factor, args.steps, args.early_steps)
-            if result is None:
-                problems.append(f"{dim}D Λ={update_factor:g} {method}: {why}")
-                rows.append({"dim": dim, "lambda": update_factor, "boxes": boxes, "steps": args.steps,
-                             "method": method, "status": "failed", "agrees": why})
-                continue
-            print(f"[{dim}D N={boxes} Λ={update_factor:g}] {method}: build {result['first_step_s'] * 1e3:.1f} ms, "
-                  f"steps 1-{result['early_steps']} {result['early_median_s'] * 1e3:.1f} ms, steady "
-                  f"{result['steady_median_s'] * 1e3:.1f} ms ({result['wall_s']:.0f} s)", flush=True)
-            results.append(result)
-            raw_lines.append(json.dumps(result))
+            chosen.append(method)
+        runs, failed = {m: [] for m in chosen}, set()
+        # Rounds alternate the methods, so that a busy spell of the machine falls on several.
+        for _ in range(args.rounds):
+            for method in chosen:
+                if method in failed:
+                    continue
+                result, why = run_one(binary, method, dim, boxes, update_factor, args.steps, args.early_steps)
+                if result is None:
+                    failed.add(method)
+                    problems.append(f"{dim}D Λ={update_factor:g} {method}: {why}")
+                    rows.append({"dim": dim, "lambda": update_factor, "boxes": boxes, "steps": args.steps,
+                                 "method": method, "status": "failed", "agrees": why})
+                    continue
+                print(f"[{dim}D N={boxes} Λ={update_factor:g}] {method}: build "
+                      f"{result['first_step_s'] * 1e3:.1f} ms, steps 1-{result['early_steps']} "
+                      f"{result['early_median_s'] * 1e3:.1f} ms, steady {result['steady_median_s'] * 1e3:.1f} ms "
+                      f"({result['wall_s']:.0f} s)", flush=True)
+                runs[method].append(result)
+                raw_lines.append(json.dumps(result))
+        results = [merge_rounds(runs[m]) for m in chosen if m not in failed]
         reference = next((r for r in results if r["method"] == REFERENCE), results[0] if results else None)
         for r in results:
             bad = [s for s, (a, b) in enumerate(zip(r["digests"], reference["digests"])) if a != b]
+            if r["digests_differ"]:
+                problems.append(f"{dim}D Λ={update_factor:g}: {r['method']} reported different pairs in two rounds")
             if bad:
                 problems.append(f"{dim}D Λ={update_factor:g}: {r['method']} differs from {reference['method']} "
                                 f"at steps {bad}")
@@ -175,7 +202,7 @@ def main():
     header = [f"## Headline comparison ({args.name})", "",
               f"smb_compare at {describe_checkout(root)}, {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC, "
               f"{os.cpu_count()} cores; load average {load_before} before, {load_average()} after; "
-              f"{elapsed / 60:.1f} minutes in all.",
+              f"{elapsed / 60:.1f} minutes in all; {args.rounds} round(s), medians over them.",
               f"Paper workload (E = 0.4, H = 2.5), {args.steps} steps after the build; times are wall-clock ms "
               f"of the method's calls; steps 1–{args.early_steps} are the first after the build, steady = "
               f"the median of the later ones. Ratios: grid time ÷ method time (above 1: faster than the grid). "
