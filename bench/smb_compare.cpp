@@ -4,6 +4,7 @@
 
 #include <malloc.h>
 #include <sys/resource.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,16 +31,21 @@ struct RunOptions {
     std::string method;
     SceneSpec scene;
     std::size_t steps = 10;
+    std::size_t early_steps = 10;
     bool check_overlaps = true;
 };
 
 constexpr const char* usage_text =
     "usage: smb_compare --method NAME --scene FAMILY --dim 2|3 --boxes N --lambda L\n"
-    "                   [--steps S] [--seed K] [--no-check]\n"
+    "                   [--steps S] [--seed K] [--early-steps E] [--no-check]\n"
     "       smb_compare --list\n"
     "Runs one method on one scene (step 0 plus S steps) and prints a JSON line.\n"
     "FAMILY: paper, sparse (3D), clustered, mixed. METHOD 'none' runs the scene alone\n"
-    "(the harness's own memory). --no-check skips the untimed exact-overlap check.\n";
+    "(the harness's own memory). --no-check skips the untimed exact-overlap check.\n"
+    "Times: first_step_s (the build), early_median_s (median of steps 1..E after it, E = 10 by\n"
+    "default), steady_median_s (median of the steps after those; 0 when S <= E), median_step_s\n"
+    "(median of all S steps after the build) and step_s (every step after the build); the\n"
+    "same in CPU seconds of the process, all threads (*_cpu_s).\n";
 
 std::size_t peak_rss_bytes() {
     rusage usage{};
@@ -75,6 +81,14 @@ void reset_resident_peak() {
     malloc_trim(0);
     std::ofstream clear_refs("/proc/self/clear_refs");
     clear_refs << "5" << std::endl;
+}
+
+// CPU seconds of the whole process (all its threads): on a machine shared with other work it
+// shows what a single-threaded method costs without the time it waited for a core.
+double process_cpu_seconds() {
+    timespec now{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 double median_of(std::vector<double> values) {
@@ -114,10 +128,10 @@ int run(const RunOptions& options) {
 
     std::vector<Pair> pairs;
     std::vector<std::uint32_t> position_of_id;
-    std::vector<double> step_seconds;
+    std::vector<double> step_seconds, step_cpu_seconds;
     std::vector<std::uint64_t> digests;
     std::vector<std::size_t> pair_counts;
-    double first_seconds = 0;
+    double first_seconds = 0, first_cpu_seconds = 0;
     std::size_t first_boxes = 0, most_boxes = 0, pair_capacity = 0, resident_before = 0;
     bool pair_list_grew = false;  // then the method's heap count includes the pair list
 
@@ -134,6 +148,8 @@ int run(const RunOptions& options) {
         const std::size_t wanted = index == 0 ? 4 * step.size() + 1024 : 2 * pairs.size() + 1024;
         if (pairs.capacity() < wanted) pairs.reserve(wanted);
         const std::size_t capacity_before = pairs.capacity();
+        if (peer) peer->prepare(step);
+        const double cpu_start = process_cpu_seconds();
         const auto start = Clock::now();
         if (peer) {
             const heap_meter::CountingScope count_method_heap;
@@ -141,28 +157,47 @@ int run(const RunOptions& options) {
             else peer->step(step, pairs);
         }
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        const double cpu_seconds = process_cpu_seconds() - cpu_start;
         if (pairs.capacity() != capacity_before) pair_list_grew = true;
-        if (index == 0) first_seconds = seconds;
-        else step_seconds.push_back(seconds);
+        if (index == 0) {
+            first_seconds = seconds;
+            first_cpu_seconds = cpu_seconds;
+        } else {
+            step_seconds.push_back(seconds);
+            step_cpu_seconds.push_back(cpu_seconds);
+        }
         pair_capacity = std::max(pair_capacity, pairs.capacity());
         if (options.check_overlaps) check_exact(step, pairs, position_of_id);
         pair_counts.push_back(pairs.size());
         digests.push_back(digest_pairs(pairs));
     }
 
+    // The steps right after the build apart from the later ones: a method may still be settling
+    // in them (smb's lists are sorted from scratch by the build, a tree's shape is young).
+    const auto early_count = static_cast<std::ptrdiff_t>(std::min(options.early_steps, step_seconds.size()));
+    const std::vector<double> early(step_seconds.begin(), step_seconds.begin() + early_count);
+    const std::vector<double> steady(step_seconds.begin() + early_count, step_seconds.end());
+    const std::vector<double> early_cpu(step_cpu_seconds.begin(), step_cpu_seconds.begin() + early_count);
+    const std::vector<double> steady_cpu(step_cpu_seconds.begin() + early_count, step_cpu_seconds.end());
+
     std::ostringstream json;
     json << "{\"method\":\"" << options.method << "\",\"family\":\"" << options.scene.family
          << "\",\"dim\":" << Dim << ",\"boxes\":" << options.scene.boxes << ",\"lambda\":" << options.scene.update_factor
          << ",\"seed\":" << options.scene.seed << ",\"steps\":" << options.steps << ",\"first_boxes\":" << first_boxes
          << ",\"max_boxes\":" << most_boxes << ",\"first_step_s\":" << first_seconds
-         << ",\"median_step_s\":" << median_of(step_seconds) << ",\"min_step_s\":"
+         << ",\"median_step_s\":" << median_of(step_seconds) << ",\"early_steps\":" << early.size()
+         << ",\"early_median_s\":" << median_of(early) << ",\"steady_median_s\":" << median_of(steady)
+         << ",\"first_step_cpu_s\":" << first_cpu_seconds << ",\"early_median_cpu_s\":" << median_of(early_cpu)
+         << ",\"steady_median_cpu_s\":" << median_of(steady_cpu) << ",\"min_step_s\":"
          << (step_seconds.empty() ? 0.0 : *std::min_element(step_seconds.begin(), step_seconds.end()))
          << ",\"peak_rss_bytes\":" << peak_rss_bytes() << ",\"resident_before_bytes\":" << resident_before
          << ",\"resident_peak_bytes\":" << resident_peak_bytes() << ",\"heap_meter\":"
          << (heap_meter::available() ? "true" : "false") << ",\"heap_peak_bytes\":" << heap_meter::peak_bytes()
          << ",\"heap_live_bytes\":" << heap_meter::live_bytes() << ",\"pair_list_grew\":"
          << (pair_list_grew ? "true" : "false") << ",\"pair_list_bytes\":" << pair_capacity * sizeof(Pair)
-         << ",\"pairs\":[";
+         << ",\"step_s\":[";
+    for (std::size_t i = 0; i < step_seconds.size(); ++i) json << (i ? "," : "") << step_seconds[i];
+    json << "],\"pairs\":[";
     for (std::size_t i = 0; i < pair_counts.size(); ++i) json << (i ? "," : "") << pair_counts[i];
     json << "],\"digests\":[";
     for (std::size_t i = 0; i < digests.size(); ++i) {
@@ -218,6 +253,7 @@ int main_with_arguments(int argc, char** argv) {
         else if (key == "lambda") options.scene.update_factor = std::stod(value);
         else if (key == "seed") options.scene.seed = std::stoull(value);
         else if (key == "steps") options.steps = std::stoull(value);
+        else if (key == "early-steps") options.early_steps = std::stoull(value);
         else {
             std::cerr << "unknown option --" << key << '\n' << usage_text;
             return 2;

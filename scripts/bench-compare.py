@@ -107,9 +107,9 @@ def check_agreement(results):
 
 
 FIELDS = ["machine", "mode", "family", "dim", "lambda", "boxes", "max_boxes", "steps", "method", "status", "note",
-          "first_step_s", "median_step_s", "min_step_s", "peak_rss_mib", "bytes_per_box", "held_bytes_per_box",
+          "first_step_s", "median_step_s", "early_median_s", "steady_median_s", "min_step_s", "peak_rss_mib", "bytes_per_box", "held_bytes_per_box",
           "pairs_step0", "pairs_last", "digest_last", "agrees", "first_ratio_to_smb", "step_ratio_to_smb",
-          "memory_ratio_to_smb"]
+          "early_ratio_to_smb", "steady_ratio_to_smb", "memory_ratio_to_smb"]
 
 
 def write_results(out_dir, name, rows, raw_lines):
@@ -133,6 +133,9 @@ def main():
     parser.add_argument("--methods", default="", help="comma-separated subset (default: all in the build)")
     parser.add_argument("--families", default="", help="comma-separated subset of scene families")
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--steps", type=int, default=0,
+                        help="steps after the build in every scene (default: the suite's); above 10 the steady "
+                             "state (steps after the first ten) gets columns of its own")
     parser.add_argument("--output", default="", help="base name of the result files (default: the mode)")
     parser.add_argument("--predict-from", default="",
                         help="a .jsonl of earlier runs to predict first sizes from (e.g. a previous part)")
@@ -166,6 +169,7 @@ def main():
                     if key not in largest_run or largest_run[key]["boxes"] <= earlier["boxes"]:
                         largest_run[key] = earlier
     for family, dims, counts, update_factors, steps in SUITES[args.mode]:
+        steps = args.steps or steps
         if families and family not in families:
             continue
         for dim in dims:
@@ -227,12 +231,16 @@ def main():
                             "lambda": update_factor, "boxes": boxes, "max_boxes": r["max_boxes"], "steps": steps,
                             "method": r["method"], "status": "ok", "note": "",
                             "first_step_s": r["first_step_s"], "median_step_s": r["median_step_s"],
+                            "early_median_s": r.get("early_median_s", ""),
+                            "steady_median_s": r.get("steady_median_s") or "",
                             "min_step_s": r["min_step_s"], "peak_rss_mib": r["peak_rss_bytes"] / 2**20,
                             "bytes_per_box": r["bytes_per_box"],
                             "held_bytes_per_box": r["held_bytes_per_box"], "pairs_step0": r["pairs"][0],
                             "pairs_last": r["pairs"][-1], "digest_last": r["digests"][-1],
                             "agrees": r.get("agrees", ""),
                             "first_ratio_to_smb": ratio("first_step_s"), "step_ratio_to_smb": ratio("median_step_s"),
+                            "early_ratio_to_smb": ratio("early_median_s"),
+                            "steady_ratio_to_smb": ratio("steady_median_s") if r.get("steady_median_s") else "",
                             "memory_ratio_to_smb": ratio("bytes_per_box"),
                         })
                         raw_lines.append(json.dumps(dict(r, baseline_peak_rss_bytes=baseline["peak_rss_bytes"])))

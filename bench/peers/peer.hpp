@@ -18,6 +18,11 @@ class Peer {
 public:
     virtual ~Peer() = default;
 
+    /// Called before build() and step(), outside the timing and the heap count: only for work a
+    /// user of the method would not do, such as copying the common float boxes into the
+    /// method's own input type.
+    virtual void prepare(const SceneStep<Dim>& /*step*/) {}
+
     /// Step 0: every box of `step` is new. Fills `pairs` (cleared first) with every overlapping
     /// pair, each once, a < b, in any order.
     virtual void build(const SceneStep<Dim>& step, std::vector<Pair>& pairs) = 0;

@@ -13,6 +13,10 @@ namespace smb::bench {
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_world_peer(const WorldSettings& settings);
 
+/// The same over double coordinates (the scene's float boxes widened, untimed, beforehand).
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_world_double_peer(const WorldSettings& settings);
+
 /// smb::Detector over an array in which each body keeps its index (no ids inside smb).
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const DetectorSettings& settings);
@@ -25,9 +29,15 @@ template <int Dim>
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_box_pruning_peer();
 
-/// A uniform grid rebuilt from scratch every step (spatial subdivision).
+/// A uniform grid rebuilt from scratch every step: each box in the cell of its lower corner,
+/// cells the size of the largest box, tested against their neighbours (peers/uniform_grid.hpp).
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_uniform_grid_peer();
+
+/// A uniform grid rebuilt from scratch every step with each box in every cell it overlaps,
+/// cells twice the mean box size: the textbook scheme.
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_uniform_grid_every_cell_peer();
 
 /// CGAL's box_intersection_d on closed boxes, stateless, every step from scratch.
 template <int Dim>

@@ -6,6 +6,7 @@ std::vector<PeerInfo> available_peers() {
     std::vector<PeerInfo> peers = {
         {"smb", true, true},
         {"smb_2threads", true, true},
+        {"smb_double", true, true},
         {"smb_paper", true, true},
         {"smb_detector", true, true},
         {"smb_detector_2threads", true, true},
@@ -14,6 +15,7 @@ std::vector<PeerInfo> available_peers() {
         {"brute_force", true, true},
         {"box_pruning", true, true},
         {"uniform_grid", true, true},
+        {"uniform_grid_every_cell", true, true},
     };
 #if SMB_BENCH_HAVE_CGAL
     peers.push_back({"cgal_box_intersection", true, true});
@@ -36,6 +38,7 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
         settings.threads = 2;
         return make_smb_world_peer<Dim>(settings);
     }
+    if (name == "smb_double") return make_smb_world_double_peer<Dim>(WorldSettings{});
     if (name == "smb_paper") {
         WorldSettings settings;
         settings.pipeline = Pipeline::paper_lists;
@@ -63,6 +66,7 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
     if (name == "brute_force") return make_brute_force_peer<Dim>();
     if (name == "box_pruning") return make_box_pruning_peer<Dim>();
     if (name == "uniform_grid") return make_uniform_grid_peer<Dim>();
+    if (name == "uniform_grid_every_cell") return make_uniform_grid_every_cell_peer<Dim>();
 #if SMB_BENCH_HAVE_CGAL
     if (name == "cgal_box_intersection") return make_cgal_box_intersection_peer<Dim>();
 #endif
