@@ -78,7 +78,7 @@ template <std::floating_point Real>
 /// so that the two planes after lo can be read without a bounds test, and a NaN never counts
 /// as passed. No branch: whether a box crosses the plane after its min is a coin toss from one
 /// box to the next (one in four at 1M in 3D) unless the boxes come sorted, which the cells
-/// checked pair by pair no longer leave them (cell_sweep.hpp).
+/// checked pair by pair no longer leave them (cell_pairs.hpp).
 template <std::floating_point Real>
 [[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_of_max(std::span<const Real> cuts, Real max,
                                                                         std::uint32_t lo) noexcept {

@@ -9,7 +9,7 @@
 //      array of counts, then a stack of offsets), in each segment its [min, max] touches. A group
 //      whose fullest segment left its band is cut again first (the axial cut). A box that spans
 //      more than two segments is oversized: it leaves the levels and is checked apart.
-//   3. Each cell of the deepest level is checked by cell_sweep.hpp (every pair, or a sweep for
+//   3. Each cell of the deepest level is checked by cell_pairs.hpp (every pair, or a sweep for
 //      a crowded cell), which also writes the next order_.
 //   4. Oversized boxes are tested against the cells they cover and against one another.
 // docs/algorithm.md gives the proof that each overlapping pair is reported exactly once.
@@ -29,7 +29,7 @@
 
 #include "core/assert.hpp"
 #include "core/id_index.hpp"
-#include "cuts/cell_sweep.hpp"
+#include "cuts/cell_pairs.hpp"
 #include "cuts/cut_tree.hpp"
 #include "core/growth.hpp"
 #include "core/held_box.hpp"
@@ -153,7 +153,7 @@ private:
         QuantileSelector<Real> quantiles;  // a group's lower ends and the buffers of its axial cut
         std::vector<Position> marks;       // boxes this thread found oversized on this level
         std::vector<std::uint32_t> count;  // level 0: this thread's share of the index array
-        CellSweep<Real, Dim> sweep;
+        CellPairs<Real, Dim> sweep;
         bool late = false;                 // marked a box some earlier group may have counted
         std::size_t located = 0;           // entries located on this level
         std::size_t hint_misses = 0;       // ... whose min lay neither in the hint's segment nor the next
@@ -189,7 +189,7 @@ private:
     template <class Report, class Work>
     std::size_t in_ordered_rounds(std::size_t count, Report& report, std::vector<Position>& home, Work&& work);
     template <class Collect>
-    std::size_t check_column(std::size_t column, std::span<const Box<Real, Dim>> boxes, CellSweep<Real, Dim>& sweep,
+    std::size_t check_column(std::size_t column, std::span<const Box<Real, Dim>> boxes, CellPairs<Real, Dim>& sweep,
                              Collect& collect, std::vector<Position>& home, const bool* give_up);
     /// Pairs one column may hold while the threads check a round (4 MiB); see check_cells().
     static constexpr std::size_t kBlockPairCap = std::size_t{1} << 18;
@@ -801,7 +801,7 @@ std::size_t PersistentCutPipeline<Real, Dim, Input>::in_ordered_rounds(std::size
 template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Collect>
 std::size_t PersistentCutPipeline<Real, Dim, Input>::check_column(std::size_t column, std::span<const Box<Real, Dim>> boxes,
-                                                           CellSweep<Real, Dim>& sweep, Collect& collect,
+                                                           CellPairs<Real, Dim>& sweep, Collect& collect,
                                                            std::vector<Position>& home, const bool* give_up) {
     const std::vector<Position>& cells = lists_[cells_list_];
     const std::vector<std::uint32_t>& cell_begin = begin_[cells_list_];

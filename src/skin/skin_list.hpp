@@ -511,14 +511,14 @@ private:
         constexpr std::uint32_t all = (1U << Dim) - 1;
 #if defined(__GNUC__)
         if constexpr (Dim <= 3) {
-            using Lanes = SweepLanes<4>::Floats;
+            using Lanes = FloatLanes<4>::Floats;
             Lanes a_min, a_max, b_min, b_max;
             std::memcpy(&a_min, a->min.data(), sizeof a_min);
             std::memcpy(&a_max, a->max.data(), sizeof a_max);
             std::memcpy(&b_min, b->min.data(), sizeof b_min);
             std::memcpy(&b_max, b->max.data(), sizeof b_max);
-            const SweepLanes<4>::Masks hit = (a_min <= b_max) & (b_min <= a_max);
-            const SweepLanes<4>::Masks sure = ((b_max - a_min) >= sure_margin_) & ((a_max - b_min) >= sure_margin_);
+            const FloatLanes<4>::Masks hit = (a_min <= b_max) & (b_min <= a_max);
+            const FloatLanes<4>::Masks sure = ((b_max - a_min) >= sure_margin_) & ((a_max - b_min) >= sure_margin_);
             const std::uint32_t hit_bits = lane_bits<4>(hit) & all;
             const std::uint32_t sure_bits = lane_bits<4>(sure) & all;
             return (hit_bits == all ? 1U : 0U) | (sure_bits == all ? 2U : 0U);
