@@ -94,6 +94,9 @@ public:
     /// Most segments per group: a box's segment range is stored in two 16-bit halves.
     static constexpr std::uint32_t kMaxSegments = 65535;
 
+    /// The axis level `level` cuts along.
+    static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
+
     [[nodiscard]] std::uint32_t segments() const noexcept { return k_; }
     [[nodiscard]] std::size_t groups(int level) const noexcept { return groups_[level]; }
     [[nodiscard]] std::size_t cells() const noexcept { return groups_[Dim]; }
