@@ -57,7 +57,8 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        std::size_t bytes = cell_pairs_.bytes_held([](const CellPairs<Real, Dim>& pairs) { return pairs.bytes_held(); });
+        std::size_t bytes =
+            cell_pairs_.bytes_held([](const CellPairs<Real, Dim>& pairs) { return pairs.bytes_held(); });
         bytes += blocks_.capacity() * sizeof(BlockOutput);
         for (const BlockOutput& block : blocks_)
             bytes += block.pairs.capacity() * sizeof(Pair) + block.home.capacity() * sizeof(Position);
@@ -142,7 +143,7 @@ std::size_t CellChecks<Real, Dim>::in_ordered_rounds(const Checked& checked, std
             block.overflowed = false;
             block.moves = 0;
             // The pairs are written by index into an array grown by doubling, not push_back:
-            // one store a pair, where push_back was a call out of line (as in PairOutput).
+            // one store a pair, where push_back is a call out of line (as in PairOutput).
             auto collect = [&block, &checked](Position x, Position y, bool sure = false) {
                 if (block.filled == kBlockPairCap) {
                     block.overflowed = true;

@@ -146,8 +146,9 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
             worker.marks.clear();
             const std::size_t first = share_begin(static_cast<std::size_t>(t));
             const std::size_t last = share_begin(static_cast<std::size_t>(t) + 1);
-            locator_.locate(0, 0, cuts, PositionRange{static_cast<Position>(first), static_cast<Position>(last - first)},
-                            boxes, ranges_.data() + first, worker.count.data(), worker, oversized_.data());
+            const PositionRange share{static_cast<Position>(first), static_cast<Position>(last - first)};
+            locator_.locate(0, 0, cuts, share, boxes, ranges_.data() + first, worker.count.data(), worker,
+                            oversized_.data());
         }
         for (std::uint32_t s = 0; s < k; ++s) {
             std::uint32_t total = 0;
@@ -250,7 +251,8 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
             cutting += cut_watch.seconds();
         }
         for (std::size_t i = marked_before; i < worker.marks.size(); ++i)
-            std::atomic_ref<std::uint8_t>(oversized_[worker.marks[i]]).store(kMarkedOversized, std::memory_order_relaxed);
+            std::atomic_ref<std::uint8_t>(oversized_[worker.marks[i]])
+                .store(kMarkedOversized, std::memory_order_relaxed);
     }
     bool late = false;
     for (const Worker& worker : workers_) late = late || worker.late;
@@ -264,7 +266,8 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
             for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
                 if (oversized_[in[i]]) ranges_[i] = SegmentRange::kNone;
                 const std::uint32_t range = ranges_[i];
-                for (std::uint32_t s = SegmentRange::lo_of(range); s <= SegmentRange::hi_of(range); ++s) ++segment_count[s];
+                for (std::uint32_t s = SegmentRange::lo_of(range); s <= SegmentRange::hi_of(range); ++s)
+                    ++segment_count[s];
             }
         }
     }

@@ -72,7 +72,8 @@ struct PaperLevel {
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return list.capacity() * sizeof(Entry) + (section_begin.capacity() + segment_begin.capacity()) * sizeof(std::uint32_t) +
+        return list.capacity() * sizeof(Entry) +
+               (section_begin.capacity() + segment_begin.capacity()) * sizeof(std::uint32_t) +
                segment_of.capacity() * sizeof(SegmentId);
     }
 };

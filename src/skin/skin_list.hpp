@@ -315,7 +315,8 @@ private:
     /// Held boxes at a and b overlap: true when their input boxes do too. `sure`: the floats
     /// proved it (overlap_bits()); otherwise the input is asked, and `retested` counts it.
     [[nodiscard]] bool confirmed(Position a, Position b, bool sure, std::size_t& retested) const {
-        return confirmed_on_input<float>(input_, std::span<const Slot>(slot_of_), a, b, sure, [&retested] { ++retested; });
+        return confirmed_on_input<float>(input_, std::span<const Slot>(slot_of_), a, b, sure,
+                                         [&retested] { ++retested; });
     }
 
     template <class Report>
