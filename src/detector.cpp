@@ -3,7 +3,7 @@
 #include <functional>
 #include <string>
 
-#include "collected_pairs.hpp"
+#include "core/collected_pairs.hpp"
 #include "detector_state.hpp"
 
 namespace smb {

@@ -5,7 +5,7 @@
 #include <unordered_set>
 #include <utility>
 
-#include "collected_pairs.hpp"
+#include "core/collected_pairs.hpp"
 #include "world_state.hpp"
 
 namespace smb {

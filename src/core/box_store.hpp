@@ -7,38 +7,18 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/growth.hpp"
 #include "core/id_index.hpp"
+#include "core/invalid_box.hpp"
 #include "core/slot_renumbering.hpp"
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
 #include "smb/pair.hpp"
 
 namespace smb::detail {
-
-template <std::floating_point Real, int Dim>
-std::string describe_invalid_box(BoxId id, const Box<Real, Dim>& box) {
-    std::ostringstream out;
-    out.precision(17);
-    out << "box " << id << " is invalid: ";
-    for (int k = 0; k < Dim; ++k) {
-        const char axis = "xyz"[k];
-        if (!std::isfinite(box.min[k]) || !std::isfinite(box.max[k])) {
-            out << axis << " range [" << box.min[k] << ", " << box.max[k]
-                << "] has a NaN or infinite coordinate";
-            return out.str();
-        }
-        if (!(box.min[k] <= box.max[k])) {
-            out << axis << "min " << box.min[k] << " > " << axis << "max " << box.max[k];
-            return out.str();
-        }
-    }
-    return out.str();
-}
 
 template <std::floating_point Real, int Dim>
 class BoxStore {

@@ -8,28 +8,9 @@
 #include <exception>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "core/thread_team.hpp"
 
 namespace smb::detail {
-
-/// The calling thread's number in the parallel region under way (0 outside one, or without
-/// OpenMP), and the number of threads in it (1 then).
-[[nodiscard]] inline int this_thread() noexcept {
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-}
-[[nodiscard]] inline int team_size() noexcept {
-#ifdef _OPENMP
-    return omp_get_num_threads();
-#else
-    return 1;
-#endif
-}
 
 /// Runs work(item, buffer) for items 0..count-1 on `threads` threads, in rounds of `round` items,
 /// and hand_on(item, buffer) for every item in item order on the calling thread, one round behind:

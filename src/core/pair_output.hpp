@@ -14,7 +14,7 @@
 namespace smb::detail {
 
 /// The pair of a and b, the smaller id first. Without a branch: which id is the smaller is a
-/// coin toss from pair to pair (side by side at 1M boxes, the check took 2 ms less).
+/// coin toss from pair to pair.
 [[nodiscard]] inline Pair ordered_pair(BoxId a, BoxId b) noexcept {
     const BoxId swap = (a ^ b) & (BoxId{0} - BoxId{b < a});
     return Pair{a ^ swap, b ^ swap};
@@ -27,14 +27,14 @@ class PairOutput {
 public:
     /// `chunk` is the caller's buffer, kept between detections so that none allocates it again.
     /// It is held at the chunk's full size, and filled_ counts the pairs in it: a pair is then
-    /// one store, where push_back tested the capacity and called out of line.
+    /// one store, where push_back tests the capacity and calls out of line.
     PairOutput(std::vector<Pair>& chunk, std::size_t chunk_size, const PairSink& sink, std::size_t& count)
         : chunk_(chunk), chunk_size_(chunk_size), sink_(sink), count_(count) {
         chunk_.resize(chunk_size_);
     }
 
-    // Inlined into the cell check's report loop (GCC left it a call there, at 1% of a step);
-    // sending a full chunk stays out of line.
+    // Inlined into the cell check's report loop (GCC would leave it a call there); sending a
+    // full chunk stays out of line.
     [[gnu::always_inline]] inline void operator()(BoxId a, BoxId b) {
         chunk_[filled_++] = ordered_pair(a, b);
         if (filled_ == chunk_size_) send_chunk();
@@ -73,26 +73,6 @@ private:
     std::size_t filled_ = 0;
     const PairSink& sink_;
     std::size_t& count_;
-};
-
-/// The sink behind detect(std::vector<Pair>&): appends every chunk to `pairs`, and past `limit`
-/// pairs gives their memory back and throws PairLimitError, naming `streaming_call` as the way
-/// to take any number of pairs. Handed over as std::cref(collector), so that the PairSink holds
-/// a reference and allocates nothing on a detection.
-struct PairCollector {
-    std::vector<Pair>& pairs;
-    std::size_t limit;
-    const char* streaming_call;
-
-    void operator()(std::span<const Pair> chunk) const {
-        if (chunk.size() > limit - pairs.size()) {
-            std::vector<Pair>().swap(pairs);  // give the memory back, not just the contents
-            throw PairLimitError("detect: more than " + std::to_string(limit) +
-                                 " overlapping pairs (WorldSettings::max_pairs_held); use " + streaming_call +
-                                 " to consume them in chunks");
-        }
-        pairs.insert(pairs.end(), chunk.begin(), chunk.end());
-    }
 };
 
 }  // namespace smb::detail

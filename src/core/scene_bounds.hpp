@@ -10,7 +10,7 @@
 #include <limits>
 #include <span>
 
-#include "core/box_store.hpp"
+#include "core/invalid_box.hpp"
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
 

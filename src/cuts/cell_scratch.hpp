@@ -5,12 +5,11 @@
 // Why one buffer and not a vector per column: the pair test stores its hits while it loads the
 // columns, and a store and a later load whose addresses agree in their low twelve bits are
 // taken for the same place until the store's address is known (4K aliasing). With the columns
-// and the hits placed by the heap, the check's speed depended on that placement: at 1M boxes
-// it took 34 or 49 ms for the same work, as one allocation size or another moved the hit list
-// (docs/performance.md). Laid out back to back from a 4 KiB boundary, with the hits after every
-// column, the hits of a cell of up to 80 boxes can fill 1 KiB before they share their place
-// modulo 4 KiB with a column the pair test loads; the cells hold about 46 boxes and pass about
-// 38 pairs.
+// and the hits placed by the heap, the check's speed depended on that placement, as one
+// allocation size or another moved the hit list. Laid out back to back from a 4 KiB boundary,
+// with the hits after every column, the hits of a cell of up to 80 boxes can fill 1 KiB before
+// they share their place modulo 4 KiB with a column the pair test loads; the cells hold about 46
+// boxes and pass about 38 pairs.
 
 #include <algorithm>
 #include <array>

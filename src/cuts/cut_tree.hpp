@@ -78,7 +78,7 @@ template <std::floating_point Real>
 /// so that the two planes after lo can be read without a bounds test, and a NaN never counts
 /// as passed. No branch: whether a box crosses the plane after its min is a coin toss from one
 /// box to the next (one in four at 1M in 3D) unless the boxes come sorted, which the cells
-/// checked pair by pair no longer leave them (cell_sweep.hpp).
+/// checked pair by pair do not leave them (cell_pairs.hpp).
 template <std::floating_point Real>
 [[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_of_max(std::span<const Real> cuts, Real max,
                                                                         std::uint32_t lo) noexcept {
@@ -93,6 +93,9 @@ class CutTree {
 public:
     /// Most segments per group: a box's segment range is stored in two 16-bit halves.
     static constexpr std::uint32_t kMaxSegments = 65535;
+
+    /// The axis level `level` cuts along.
+    static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
 
     [[nodiscard]] std::uint32_t segments() const noexcept { return k_; }
     [[nodiscard]] std::size_t groups(int level) const noexcept { return groups_[level]; }
@@ -179,9 +182,10 @@ public:
 
     /// A group with more than twice this many keys per segment takes its quantiles from an
     /// evenly spaced sample of this many keys per segment instead of from all of them
-    /// (cut_group). The planes only need to be about even: the band (set_band) is measured on the real counts, and a sample of 256 per
-    /// segment is within about 6% of the true quantiles. It makes the first cuts of a large
-    /// world (1M boxes: 1M keys on level 0, 28k per group on level 1) several times cheaper.
+    /// (cut_group). The planes only need to be about even: the band (set_band) is measured on the
+    /// real counts, and a sample of 256 per segment is within about 6% of the true quantiles. It
+    /// makes the first cuts of a large world (1M boxes: 1M keys on level 0, 28k per group on level
+    /// 1) several times cheaper.
     static constexpr std::size_t kSamplePerSegment = 256;
 
     /// Sets the band of a group just cut: its fullest segment may grow by half (and at least

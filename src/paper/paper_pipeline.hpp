@@ -8,7 +8,6 @@
 // the paper to the functions below.
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -19,16 +18,17 @@
 #include "paper/axial_cut.hpp"
 #include "paper/axis_entry.hpp"
 #include "core/box_store.hpp"
+#include "core/stopwatch.hpp"
 #include "paper/cell_check.hpp"
 #include "paper/cell_lists.hpp"
 #include "paper/global_local_map.hpp"
 #include "paper/mask_array.hpp"
 #include "paper/oversized_sweep.hpp"
+#include "paper/paper_level.hpp"
 #include "paper/shell_sort.hpp"
 #include "paper/singular_regroup.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
-#include "smb/world.hpp"
 
 namespace smb::detail {
 
@@ -52,25 +52,14 @@ public:
 
 private:
     using Entry = AxisEntry<Real>;
-    using Clock = std::chrono::steady_clock;
 
-    /// One level of the cut: the persistent list of the paper (Y1, X12 in 2D; Z1, Y12, X123 in
-    /// 3D) and the per-step arrays derived from it.
-    struct Level {
-        std::vector<Entry> list;                  // grouped by section, sorted within each
-        std::vector<std::uint32_t> section_begin; // offsets of the sections in `list`
-        std::vector<std::uint32_t> segment_begin; // offsets of the segments (after the cut)
-        std::vector<SegmentId> segment_of;        // index array: segment of every item id
-        DisController dis;
-    };
+    using Level = PaperLevel<Real>;  // the paper's Y1, X12 in 2D; Z1, Y12, X123 in 3D
 
     static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
 
     void choose_cuts();
     void refresh_keys(Level& level, int depth);
     void collect_arrivals(int depth);
-    DisWork sort_level(Level& level);
-    void cut_level(Level& level);
     void find_oversized();
     void release_oversized_scratch();
     void build_cell_lists();
@@ -101,13 +90,10 @@ private:
 template <std::floating_point Real, int Dim>
 template <class Report>
 void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
-    auto seconds_since = [](Clock::time_point t) {
-        return std::chrono::duration<double>(Clock::now() - t).count();
-    };
     const std::size_t n = store_->slot_count();
     if (n > 0) {
         choose_cuts();
-        auto phase = Clock::now();
+        Stopwatch phase;
         double sorting = 0;
         for (int depth = 0; depth < Dim; ++depth) {
             Level& level = levels_[depth];
@@ -135,28 +121,27 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
                 level.section_begin.swap(new_begin);
             }
             SMB_ASSERT(level.list.size() == (n << (depth + 1)), "a list lost or gained items");
-            const auto sort_start = Clock::now();
-            const DisWork work = sort_level(level);
-            sorting += seconds_since(sort_start);
+            const Stopwatch sort_watch;
+            const DisWork work = level.sort();
+            sorting += sort_watch.seconds();
             level.dis.learn(work);
             stats.sort_moves += work.moves();
-            cut_level(level);
+            level.cut(cuts_);
         }
         listed_ = n;
         release_oversized_scratch();
         find_oversized();
         build_cell_lists();
         stats.list_sort_seconds = sorting;
-        stats.cut_regroup_seconds = seconds_since(phase) - sorting;
+        stats.cut_regroup_seconds = phase.lap() - sorting;
         stats.cells = levels_[Dim - 1].segment_begin.size() - 1;
         stats.oversized_boxes = oversized_count_;
 
-        phase = Clock::now();
         check_cells(report);
         if (oversized_count_ > 0) {
             oversized_sweep_.run(levels_[0].list, oversized_, store_->boxes(), report);
         }
-        stats.check_seconds = seconds_since(phase);
+        stats.check_seconds = phase.seconds();
 #ifdef SMB_VALIDATE
         check_invariants();
 #endif
@@ -173,25 +158,7 @@ template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::fold_removals(const SlotRenumbering& renumbering) {
     std::size_t still_listed = 0;
     for (std::size_t s = 0; s < listed_; ++s) still_listed += renumbering(static_cast<Slot>(s)) != kNoSlot ? 1 : 0;
-    for (int depth = 0; depth < Dim; ++depth) {
-        Level& level = levels_[depth];
-        const int shift = depth + 1;
-        const Item low_bits = (Item{1} << shift) - 1;
-        std::size_t write = 0;
-        for (std::size_t j = 0; j + 1 < level.section_begin.size(); ++j) {
-            const std::uint32_t first = level.section_begin[j];
-            const std::uint32_t last = level.section_begin[j + 1];
-            level.section_begin[j] = static_cast<std::uint32_t>(write);
-            for (std::uint32_t i = first; i < last; ++i) {
-                const Entry entry = level.list[i];
-                const Slot slot = renumbering(static_cast<Slot>(entry.item >> shift));
-                if (slot == kNoSlot) continue;
-                level.list[write++] = Entry{entry.key, (slot << shift) | (entry.item & low_bits)};
-            }
-        }
-        if (!level.section_begin.empty()) level.section_begin.back() = static_cast<std::uint32_t>(write);
-        level.list.resize(write);
-    }
+    for (int depth = 0; depth < Dim; ++depth) levels_[depth].renumber(renumbering, depth + 1);
     listed_ = still_listed;
 }
 
@@ -235,33 +202,6 @@ void PaperPipeline<Real, Dim>::collect_arrivals(int depth) {
             arrivals_.push_back(Entry{end_of(item) == 0 ? box.min[axis] : box.max[axis], item});
         }
     }
-}
-
-template <std::floating_point Real, int Dim>
-DisWork PaperPipeline<Real, Dim>::sort_level(Level& level) {
-    DisWork work;
-    const int increments = level.dis.increments();
-    for (std::size_t j = 0; j + 1 < level.section_begin.size(); ++j) {
-        const std::span<Entry> section(level.list.data() + level.section_begin[j],
-                                       level.section_begin[j + 1] - level.section_begin[j]);
-        work += diminishing_increment_sort<Real>(section, increments);
-    }
-    return work;
-}
-
-template <std::floating_point Real, int Dim>
-void PaperPipeline<Real, Dim>::cut_level(Level& level) {
-    level.segment_of.resize(level.list.size());
-    level.segment_begin.clear();
-    const std::size_t sections = level.section_begin.size() - 1;
-    level.segment_begin.reserve(sections * cuts_ + 1);
-    for (std::size_t j = 0; j < sections; ++j) {
-        const std::uint32_t first = level.section_begin[j];
-        const std::span<const Entry> section(level.list.data() + first, level.section_begin[j + 1] - first);
-        cut_section<Real>(section, first, cuts_, static_cast<SegmentId>(j * cuts_), level.segment_of,
-                          level.segment_begin);
-    }
-    level.segment_begin.push_back(static_cast<std::uint32_t>(level.list.size()));
 }
 
 /// The first detection (and any step that inserts or moves many boxes) fills the arrival and
@@ -400,11 +340,7 @@ void PaperPipeline<Real, Dim>::check_invariants() const {
 template <std::floating_point Real, int Dim>
 std::size_t PaperPipeline<Real, Dim>::bytes_held() const noexcept {
     std::size_t bytes = 0;
-    for (const Level& level : levels_) {
-        bytes += level.list.capacity() * sizeof(Entry);
-        bytes += (level.section_begin.capacity() + level.segment_begin.capacity()) * sizeof(std::uint32_t);
-        bytes += level.segment_of.capacity() * sizeof(SegmentId);
-    }
+    for (const Level& level : levels_) bytes += level.bytes_held();
     for (const auto& cell_list : cell_lists_) bytes += cell_list.capacity() * sizeof(Item);
     bytes += cell_cursor_.capacity() * sizeof(std::uint32_t);
     bytes += (arrivals_.capacity() + spare_.capacity()) * sizeof(Entry);

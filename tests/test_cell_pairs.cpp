@@ -1,7 +1,7 @@
-// The cell check (src/cuts/cell_sweep.hpp) both ways: testing every pair and sweeping on x report the
-// same pairs and the same home boxes as a direct test under the lower-corner rule, at every
-// size around the limit between them, in float and double, with the boxes registered in any
-// order.
+// The cell check (src/cuts/cell_pairs.hpp) both ways: testing every pair and sweeping on x
+// report the same pairs and the same home boxes as a direct test under the lower-corner rule, at
+// every size around the limit between them, in float and double, with the boxes registered in
+// any order.
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,8 @@
 #include <utility>
 #include <vector>
 
-#include "cuts/cell_sweep.hpp"
+#include "cuts/cell_pairs.hpp"
+#include "smb/pair.hpp"
 
 namespace smb::detail {
 namespace {
@@ -110,7 +111,7 @@ Checked<Real, Dim> run_check(Run&& run) {
 }
 
 template <class T>
-class CellSweepTest : public ::testing::Test {};
+class CellPairsTest : public ::testing::Test {};
 
 template <class Real, int D>
 struct Kind {
@@ -118,14 +119,14 @@ struct Kind {
     static constexpr int dimension = D;
 };
 using Kinds = ::testing::Types<Kind<float, 2>, Kind<float, 3>, Kind<double, 2>, Kind<double, 3>>;
-TYPED_TEST_SUITE(CellSweepTest, Kinds);
+TYPED_TEST_SUITE(CellPairsTest, Kinds);
 
-TYPED_TEST(CellSweepTest, AllPairsAndSweepReportTheSamePairsOnce) {
+TYPED_TEST(CellPairsTest, AllPairsAndSweepReportTheSamePairsOnce) {
     using Real = typename TypeParam::real_type;
     constexpr int Dim = TypeParam::dimension;
-    constexpr std::size_t limit = CellSweep<Real, Dim>::kAllPairsLimit;
+    constexpr std::size_t limit = CellPairs<Real, Dim>::kAllPairsLimit;
     std::mt19937_64 random(17 + Dim);
-    CellSweep<Real, Dim> sweep;  // one object throughout: its buffers are reused, as in the pipeline
+    CellPairs<Real, Dim> cell_pairs;  // one object throughout: its buffers are reused, as in the pipeline
     for (const std::size_t m : {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{8},
                                 std::size_t{9}, std::size_t{31}, limit - 1, limit, limit + 1, std::size_t{300}}) {
         for (int trial = 0; trial < 6; ++trial) {
@@ -138,13 +139,15 @@ TYPED_TEST(CellSweepTest, AllPairsAndSweepReportTheSamePairsOnce) {
             std::vector<std::uint32_t> home = expected_home(cell);
 
             const auto all_pairs = run_check<Real, Dim>(
-                [&](auto& report, auto& out) { sweep.check_all_pairs(entries, boxes, cell.floor, report, out); });
+                [&](auto& report, auto& out) { cell_pairs.check_all_pairs(entries, boxes, cell.floor, report, out); });
             EXPECT_EQ(all_pairs.pairs, expected);
             EXPECT_EQ(all_pairs.reports, expected.size()) << "a pair reported twice";
             EXPECT_EQ(all_pairs.home, home) << "home boxes in the order they were registered";
 
             const auto swept = run_check<Real, Dim>(
-                [&](auto& report, auto& out) { sweep.check_by_sweep(entries, boxes, ids, cell.floor, report, out); });
+                [&](auto& report, auto& out) {
+                    cell_pairs.check_by_sweep(entries, boxes, ids, cell.floor, report, out);
+                });
             EXPECT_EQ(swept.pairs, expected);
             EXPECT_EQ(swept.reports, expected.size()) << "a pair reported twice";
             EXPECT_TRUE(std::is_sorted(swept.home.begin(), swept.home.end(), [&](std::uint32_t a, std::uint32_t b) {
@@ -156,14 +159,14 @@ TYPED_TEST(CellSweepTest, AllPairsAndSweepReportTheSamePairsOnce) {
             EXPECT_EQ(swept_home, home);
 
             const auto checked = run_check<Real, Dim>(
-                [&](auto& report, auto& out) { sweep.check(entries, boxes, ids, cell.floor, report, out); });
+                [&](auto& report, auto& out) { cell_pairs.check(entries, boxes, ids, cell.floor, report, out); });
             EXPECT_EQ(checked.pairs, expected);
             EXPECT_EQ(checked.home, m <= limit ? all_pairs.home : swept.home) << "check() takes the way its size asks";
         }
     }
 }
 
-TEST(CellSweep, DoubleGapsBelowFloatPrecisionAreTestedExactly) {
+TEST(CellPairs, DoubleGapsBelowFloatPrecisionAreTestedExactly) {
     // Floats round these boxes onto one another; only the exact test on the doubles tells the
     // touching pair (reported) from the ones a hair apart (not).
     const double base = 1.0e6;
@@ -179,18 +182,18 @@ TEST(CellSweep, DoubleGapsBelowFloatPrecisionAreTestedExactly) {
     std::vector<BoxId> ids(entries.begin(), entries.end());
     const CellFloor<double, 3> floor{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                                      -std::numeric_limits<double>::infinity()};
-    CellSweep<double, 3> sweep;
+    CellPairs<double, 3> cell_pairs;
     for (const bool swept : {false, true}) {
         SCOPED_TRACE(swept ? "sweep" : "all pairs");
         PairSet pairs;
         std::vector<std::uint32_t> home;
         auto report = [&](std::uint32_t a, std::uint32_t b) { pairs.insert(ordered(a, b)); };
         if (swept) {
-            sweep.check_by_sweep(std::span<const std::uint32_t>(entries), std::span<const Box<double, 3>>(boxes),
-                                 std::span<const BoxId>(ids), floor, report, home);
+            cell_pairs.check_by_sweep(std::span<const std::uint32_t>(entries), std::span<const Box<double, 3>>(boxes),
+                                      std::span<const BoxId>(ids), floor, report, home);
         } else {
-            sweep.check_all_pairs(std::span<const std::uint32_t>(entries), std::span<const Box<double, 3>>(boxes), floor,
-                                  report, home);
+            cell_pairs.check_all_pairs(std::span<const std::uint32_t>(entries), std::span<const Box<double, 3>>(boxes),
+                                       floor, report, home);
         }
         EXPECT_EQ(pairs, (PairSet{{0U, 40U}}));
         EXPECT_EQ(home.size(), boxes.size());
@@ -263,7 +266,7 @@ TEST(CellScratch, ColumnsAndHitsApartOnTheirOwnLinesAndNotAliasedModulo4KiB) {
 
 template <std::size_t Lanes>
 void expect_set_lanes_appended() {
-    typename SweepLanes<Lanes>::Masks values{};
+    typename FloatLanes<Lanes>::Masks values{};
     for (std::size_t lane = 0; lane < Lanes; ++lane) values[lane] = static_cast<std::int32_t>(100 + 7 * lane);
     for (unsigned bits = 0; bits < (1U << Lanes); ++bits) {
         SCOPED_TRACE(::testing::Message() << "lanes " << Lanes << ", bits " << bits);
@@ -281,9 +284,9 @@ void expect_set_lanes_appended() {
     }
 }
 
-TEST(CellSweep, AppendSetLanesPacksTheSetLanesInLaneOrder) {
+TEST(CellPairs, AppendSetLanesPacksTheSetLanesInLaneOrder) {
     expect_set_lanes_appended<4>();
-#if SMB_SWEEP_AVX2
+#if SMB_LANES_AVX2
     if (cpu_has_avx2()) expect_set_lanes_appended<8>();
 #else
     expect_set_lanes_appended<8>();

@@ -1,0 +1,238 @@
+#pragma once
+// The check of the persistent-cut pipeline's cells (cell_pairs.hpp, one column of cells after
+// another) and of its oversized boxes, shared among the threads, with the pairs reaching the
+// caller in the same order whatever their number.
+
+#include <algorithm>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/assert.hpp"
+#include "core/growth.hpp"
+#include "core/ordered_rounds.hpp"
+#include "core/pair_output.hpp"
+#include "core/thread_team.hpp"
+#include "cuts/cell_order.hpp"
+#include "cuts/cell_pairs.hpp"
+#include "cuts/cells.hpp"
+#include "smb/box.hpp"
+#include "smb/pair.hpp"
+
+namespace smb::detail {
+
+/// What the checks of one detection read: the cells and the oversized boxes (in x order) of the
+/// regrouping, the ordered boxes, the ids of their positions (order: a CellOrder), and
+/// confirm(a, b, sure), which says whether a pair the held boxes pass holds for the input too
+/// (`sure`: the cell check proved it by the sure margin).
+template <std::floating_point Real, int Dim, class Order, class Confirm>
+struct CheckedCells {
+    Cells<Real, Dim> cells;
+    std::span<const Position> oversized;
+    std::span<const Box<Real, Dim>> boxes;
+    const Order& order;
+    Confirm& confirm;
+};
+
+template <std::floating_point Real, int Dim>
+class CellChecks {
+public:
+    /// Pairs one column may hold while the threads check a round (4 MiB); see in_ordered_rounds().
+    static constexpr std::size_t kBlockPairCap = std::size_t{1} << 18;
+
+    /// Reports every pair of the cells, and then of the oversized boxes, to `report` (report(a, b)
+    /// for single pairs, report.append(pairs) for runs), on `threads` threads. Writes to `home`
+    /// every box once: each cell's home boxes (those whose lower corner it holds), cell by cell,
+    /// then the oversized boxes. Returns the insertion-sort moves of the swept cells.
+    template <class Checked, class Report>
+    std::size_t check(const Checked& checked, float sure_margin, int threads, Report& report,
+                      std::vector<Position>& home) {
+        threads_ = threads;
+        cell_pairs_.resize(threads);
+        const std::size_t moves = check_cells(checked, sure_margin, report, home);
+        check_oversized(checked, report);
+        return moves;
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        std::size_t bytes =
+            cell_pairs_.bytes_held([](const CellPairs<Real, Dim>& pairs) { return pairs.bytes_held(); });
+        bytes += blocks_.capacity() * sizeof(BlockOutput);
+        for (const BlockOutput& block : blocks_)
+            bytes += block.pairs.capacity() * sizeof(Pair) + block.home.capacity() * sizeof(Position);
+        return bytes;
+    }
+
+private:
+    /// The pairs and home boxes of one block of cells (a column), handed on in block order so
+    /// that the report is the same whatever the number of threads.
+    struct alignas(64) BlockOutput {
+        std::vector<Pair> pairs;  // its first `filled` hold this block's pairs
+        std::size_t filled = 0;
+        std::vector<Position> home;
+        std::size_t moves = 0;
+        bool overflowed = false;
+    };
+
+    template <class Checked, class Report>
+    std::size_t check_cells(const Checked& checked, float sure_margin, Report& report, std::vector<Position>& home);
+    template <class Checked, class Report, class Work>
+    std::size_t in_ordered_rounds(const Checked& checked, std::size_t count, Report& report,
+                                  std::vector<Position>& home, Work&& work);
+    template <class Checked, class Collect>
+    std::size_t check_column(const Checked& checked, std::size_t column, CellPairs<Real, Dim>& cell_pairs,
+                             Collect& collect, std::vector<Position>& home, const bool* give_up);
+    template <class Checked, class Report>
+    void check_oversized(const Checked& checked, Report& report);
+    template <class Checked, class Collect>
+    void check_one_oversized(const Checked& checked, std::size_t index, Collect& collect, const bool* give_up) const;
+
+    PerThread<CellPairs<Real, Dim>> cell_pairs_;
+    std::vector<BlockOutput> blocks_;  // one per block of a round of cell checks
+    int threads_ = 1;
+};
+
+/// The cells are checked column by column (a column: the k cells of one group of the deepest
+/// level), in column order, so the report does not depend on the thread count.
+template <std::floating_point Real, int Dim>
+template <class Checked, class Report>
+std::size_t CellChecks<Real, Dim>::check_cells(const Checked& checked, float sure_margin, Report& report,
+                                               std::vector<Position>& home) {
+    const std::span<const Box<Real, Dim>> boxes = checked.boxes;
+    home.clear();
+    reserve_with_slack(home, boxes.size());
+    for (CellPairs<Real, Dim>& cell_pairs : cell_pairs_) cell_pairs.set_sure_margin(sure_margin);
+    const std::size_t moves = in_ordered_rounds(
+        checked, checked.cells.cuts->groups(Dim - 1), report, home,
+        [&](std::size_t column, auto& collect, std::vector<Position>& column_home, const bool* give_up) {
+            return check_column(checked, column, cell_pairs_.mine(), collect, column_home, give_up);
+        });
+    home.insert(home.end(), checked.oversized.begin(), checked.oversized.end());
+    SMB_ASSERT(home.size() == boxes.size(), "every box has exactly one home cell");
+    return moves;
+}
+
+/// Runs work(item, collect, home, give_up) for the items 0..count-1 (columns, oversized boxes)
+/// so that their pairs reach `report`, and their home boxes `home`, in item order whatever the
+/// number of threads. One thread: straight through. Several: rounds of items shared among the
+/// threads, each item's pairs buffered; while the threads work on one round, the calling thread
+/// first hands the previous round on (so the caller's sink only ever runs on the thread that
+/// called detect(), and the hand-over overlaps the work). An item whose pairs outgrow its
+/// buffer's cap (a crowd of identical boxes: billions of pairs) gives up and is run again alone
+/// when its turn comes, straight into the caller's sink, so memory stays bounded.
+template <std::floating_point Real, int Dim>
+template <class Checked, class Report, class Work>
+std::size_t CellChecks<Real, Dim>::in_ordered_rounds(const Checked& checked, std::size_t count, Report& report,
+                                                     std::vector<Position>& home, Work&& work) {
+    auto report_ids = [&](Position a, Position b, bool sure = false) {
+        if (checked.confirm(a, b, sure)) report(checked.order.id_at(a), checked.order.id_at(b));
+    };
+    std::size_t moves = 0;
+    if (threads_ == 1) {
+        for (std::size_t item = 0; item < count; ++item) moves += work(item, report_ids, home, nullptr);
+        return moves;
+    }
+    const std::size_t round = 8 * static_cast<std::size_t>(threads_);
+    run_in_ordered_rounds(
+        threads_, count, round, blocks_,
+        [&](std::size_t item, BlockOutput& block) {
+            block.filled = 0;
+            block.home.clear();
+            block.overflowed = false;
+            block.moves = 0;
+            // The pairs are written by index into an array grown by doubling, not push_back:
+            // one store a pair, where push_back is a call out of line (as in PairOutput).
+            auto collect = [&block, &checked](Position x, Position y, bool sure = false) {
+                if (block.filled == kBlockPairCap) {
+                    block.overflowed = true;
+                    return;
+                }
+                if (!checked.confirm(x, y, sure)) return;
+                if (block.filled == block.pairs.size())
+                    block.pairs.resize(std::min(kBlockPairCap, std::max<std::size_t>(1024, 2 * block.filled)));
+                block.pairs[block.filled++] = ordered_pair(checked.order.id_at(x), checked.order.id_at(y));
+            };
+            block.moves = work(item, collect, block.home, &block.overflowed);
+        },
+        [&](std::size_t item, BlockOutput& block) {
+            if (block.overflowed) {
+                moves += work(item, report_ids, home, nullptr);
+            } else {
+                report.append(std::span<const Pair>(block.pairs.data(), block.filled));
+                home.insert(home.end(), block.home.begin(), block.home.end());
+                moves += block.moves;
+            }
+        });
+    return moves;
+}
+
+/// Checks the k cells of one column in order; stops early once *give_up is set.
+template <std::floating_point Real, int Dim>
+template <class Checked, class Collect>
+std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::size_t column,
+                                                CellPairs<Real, Dim>& cell_pairs, Collect& collect,
+                                                std::vector<Position>& home, const bool* give_up) {
+    const std::span<const Box<Real, Dim>> boxes = checked.boxes;
+    const std::span<const Position> cells = checked.cells.entries;
+    const std::span<const std::uint32_t> cell_begin = checked.cells.begin;
+    const std::uint32_t k = checked.cells.cuts->segments();
+    const bool own_ids = checked.order.own_ids();
+    const std::span<const BoxId> ids = checked.order.ids();
+    const std::span<const Slot> slots = checked.order.order();
+    std::size_t moves = 0;
+    for (std::size_t cell = column * k; cell < (column + 1) * k; ++cell) {
+        if (give_up != nullptr && *give_up) break;
+        const std::uint32_t first = cell_begin[cell];
+        const std::uint32_t size = cell_begin[cell + 1] - first;
+        if (size == 0) continue;
+        // The boxes two cells ahead lie in a few runs of the ordered array, mostly in L3: ask
+        // for them now so that they arrive while this cell is checked.
+        constexpr std::size_t ahead = 2;
+        if (cell + ahead + 1 < cell_begin.size()) {
+            for (std::uint32_t i = cell_begin[cell + ahead]; i < cell_begin[cell + ahead + 1]; ++i) {
+                __builtin_prefetch(&boxes[cells[i]]);
+                __builtin_prefetch(own_ids ? static_cast<const void*>(&ids[cells[i]])
+                                           : static_cast<const void*>(&slots[cells[i]]));
+            }
+        }
+        const std::span<const Position> entries(cells.data() + first, size);
+        moves += own_ids ? cell_pairs.check(entries, boxes, ids, checked.cells.floor_of(cell), collect, home)
+                         : cell_pairs.check(entries, boxes, slots, checked.cells.floor_of(cell), collect, home);
+    }
+    return moves;
+}
+
+/// Oversized boxes are in no cell. Each is tested against the boxes of every cell it covers,
+/// under the same lower-corner rule as the cells (so a pair is reported once even when the
+/// other box is registered in several of those cells), and against the oversized boxes after
+/// it in x order by a sweep on x.
+template <std::floating_point Real, int Dim>
+template <class Checked, class Report>
+void CellChecks<Real, Dim>::check_oversized(const Checked& checked, Report& report) {
+    std::vector<Position> no_home;  // oversized boxes have no home cell
+    in_ordered_rounds(checked, checked.oversized.size(), report, no_home,
+                      [&](std::size_t index, auto& collect, std::vector<Position>&, const bool* give_up) {
+                          check_one_oversized(checked, index, collect, give_up);
+                          return std::size_t{0};
+                      });
+}
+
+/// Oversized box number `index` (in x order) against the boxes of the cells it covers and
+/// against the oversized boxes after it; stops early once *give_up is set.
+template <std::floating_point Real, int Dim>
+template <class Checked, class Collect>
+void CellChecks<Real, Dim>::check_one_oversized(const Checked& checked, std::size_t index, Collect& collect,
+                                                const bool* give_up) const {
+    const std::span<const Box<Real, Dim>> boxes = checked.boxes;
+    const std::span<const Position> sorted = checked.oversized;  // in x order
+    const Position big = sorted[index];
+    const Box<Real, Dim>& a = boxes[big];
+    checked.cells.for_each_box_overlapping(a, boxes, [&](Position other) { collect(big, other); }, give_up);
+    for (std::size_t j = index + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
+        if (overlaps(a, boxes[sorted[j]])) collect(big, sorted[j]);
+    }
+}
+
+}  // namespace smb::detail

@@ -1,0 +1,137 @@
+#pragma once
+// The order the persistent-cut pipeline reads the boxes in: every slot once, cell by cell as the
+// last detection left them (x-sorted within a swept cell), and the boxes and ids copied in that
+// order once per detection. Every later pass reads the copy almost sequentially, where reading
+// the caller's array by slot would miss the cache on nearly every box. The entries of the levels
+// and cells are positions in the copy, not slots.
+
+#include <algorithm>
+#include <array>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "core/assert.hpp"
+#include "core/growth.hpp"
+#include "core/held_box.hpp"
+#include "core/id_index.hpp"
+#include "core/prefetch.hpp"
+#include "core/slot_renumbering.hpp"
+#include "smb/box.hpp"
+#include "smb/pair.hpp"
+
+namespace smb::detail {
+
+/// A place in the ordered copy of the boxes (CellOrder).
+using Position = std::uint32_t;
+
+template <std::floating_point Real, int Dim, std::floating_point Input>
+class CellOrder {
+public:
+    /// Drops removed slots from the order and renumbers the others (BoxStore::compact(), which
+    /// leaves the listed boxes in the first slots).
+    void fold_removals(const SlotRenumbering& renumbering) {
+        std::size_t write = 0;
+        for (const Slot slot : order_) {
+            const Slot now = renumbering(slot);
+            if (now != kNoSlot) order_[write++] = now;
+        }
+        order_.resize(write);
+        listed_ = write;
+    }
+
+    /// Slots [0, listed()) are in the order; later ones arrived since the last detection.
+    [[nodiscard]] std::size_t listed() const noexcept { return listed_; }
+
+    /// Forgets the slots from `n` on: a Detector's caller passed fewer boxes than last time.
+    void forget_slots_from(std::size_t n) {
+        if (n >= listed_) return;
+        std::erase_if(order_, [n](Slot slot) { return slot >= n; });
+        listed_ = std::min(listed_, n);
+    }
+
+    /// Appends the slots that arrived since the last detection, for a detection of `n` boxes.
+    void list_arrivals(std::size_t n) {
+        reserve_with_slack(order_, n);
+        for (std::size_t slot = listed_; slot < n; ++slot) order_.push_back(static_cast<Slot>(slot));
+        listed_ = n;
+        SMB_ASSERT(order_.size() == n, "the order holds every box once");
+    }
+
+    /// Every slot once: last detection's cells. While a detection runs, the slot each position
+    /// of the copy holds.
+    [[nodiscard]] std::span<const Slot> order() const noexcept { return order_; }
+
+    /// After a detection: the slot each position of its copy holds (the order it was made in).
+    [[nodiscard]] std::span<const Slot> copied_from() const noexcept { return next_order_; }
+
+    /// Copies the boxes (held from `origin` where Real rounds Input) and their ids in order.
+    void copy(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids,
+              const std::array<Input, Dim>& origin, int threads) {
+        const std::size_t n = order_.size();
+        resize_with_slack(ordered_, n);
+        own_ids_ = !store_ids.empty();
+        if (own_ids_) resize_with_slack(ordered_ids_, n);
+        else std::vector<BoxId>().swap(ordered_ids_);
+        // Each box is a miss of its own (the store is in slot order, not cell order) and the loop
+        // does little else, so the requests must start far ahead to keep enough in flight.
+        constexpr std::size_t ahead = 64;
+        const auto count = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (std::ptrdiff_t j = 0; j < count; ++j) {
+            const auto i = static_cast<std::size_t>(j);
+            if (i + ahead < n) {
+                prefetch_whole(&store_boxes[order_[i + ahead]]);
+                if (!store_ids.empty()) __builtin_prefetch(&store_ids[order_[i + ahead]]);
+            }
+            if constexpr (!std::is_same_v<Real, Input>) {
+                ordered_[i] = held_box<Input, Dim>(store_boxes[order_[i]], origin);
+            } else {
+                (void)origin;
+                ordered_[i] = store_boxes[order_[i]];
+            }
+            if (own_ids_) ordered_ids_[i] = store_ids[order_[i]];
+        }
+    }
+
+    /// The boxes in order, as copied by the last copy().
+    [[nodiscard]] std::span<const Box<Real, Dim>> boxes() const noexcept { return ordered_; }
+    /// Whether the ids were given (ids()); else box `slot` has id `slot` (order()).
+    [[nodiscard]] bool own_ids() const noexcept { return own_ids_; }
+    [[nodiscard]] std::span<const BoxId> ids() const noexcept { return ordered_ids_; }
+
+    /// The id of the box at `position`: while a detection runs, order_ still maps positions to
+    /// slots, so slot ids need no array of their own (8 bytes a box less for a Detector).
+    [[nodiscard]] BoxId id_at(Position position) const noexcept {
+        return own_ids_ ? ordered_ids_[position] : BoxId{order_[position]};
+    }
+
+    /// Where the cell check writes the positions of the home boxes, cell by cell: the next order.
+    [[nodiscard]] std::vector<Position>& next() noexcept { return next_order_; }
+
+    /// Makes next() the order: the check wrote positions in the copy, the order holds their slots.
+    void advance(int threads) {
+        const auto count = static_cast<std::ptrdiff_t>(next_order_.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (std::ptrdiff_t i = 0; i < count; ++i) next_order_[i] = order_[next_order_[i]];
+        order_.swap(next_order_);
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        return (order_.capacity() + next_order_.capacity()) * sizeof(Slot) +
+               ordered_.capacity() * sizeof(Box<Real, Dim>) + ordered_ids_.capacity() * sizeof(BoxId);
+    }
+
+private:
+    std::vector<Slot> order_;              // every slot once: last step's cells, x-sorted within swept ones
+    std::vector<Position> next_order_;     // positions of the home boxes, cell by cell
+    std::vector<Box<Real, Dim>> ordered_;  // the boxes in order_'s order, copied each step
+    std::vector<BoxId> ordered_ids_;       // and their ids, unless the ids are the slots
+    bool own_ids_ = true;                  // ids were given; else box `slot` has id `slot`
+    std::size_t listed_ = 0;               // slots [0, listed_) are in order_; later ones are new
+};
+
+}  // namespace smb::detail

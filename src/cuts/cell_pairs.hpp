@@ -1,0 +1,268 @@
+#pragma once
+// The cell check of the persistent-cut pipeline: the pairs of one cell, found in one of two ways
+// by the number m of boxes registered in the cell. Either way the boxes are copied out one array
+// per coordinate (as floats, cell_scratch.hpp), so that the check reads small contiguous arrays,
+// eight candidates at a time (cell_rows.hpp).
+//
+// - Up to kAllPairsLimit boxes (nearly every cell: the cuts aim at about 24 boxes a cell, about
+//   46 registered in 3D): every pair is tested, in the order the boxes were registered. No keys,
+//   no sort, and loops whose lengths do not depend on the boxes' sizes, which a sweep's scan
+//   does, at one mispredicted exit per box. The hits are written down without a branch (a
+//   compress through a permutation table) and reported after the rows.
+// - Beyond (a crowd the cuts cannot split, or a large target population): the boxes get local
+//   numbers (the global-local map of the paper), are sorted on x by DIS with one increment (the
+//   list arrives almost sorted: it follows last step's order), and are swept on x with direct
+//   tests on the other axes.
+//
+// A pair shared by several cells is reported only by the cell that holds the lower corner of the
+// two boxes' intersection, p[k] = max(a.min[k], b.min[k]). This replaces the paper's mask array:
+// it needs no per-box state, and it stays exact whatever the number of cells a box touches.
+// Every box registered in a cell has min[k] < the cell's upper plane on every axis (its min lies
+// in the cell's segment or before it), so p lies in the cell iff, on every axis, a.min[k] or
+// b.min[k] is at or above the cell's lower plane: one bit per axis and box, computed once.
+
+#include <algorithm>
+#include <array>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "core/assert.hpp"
+#include "cuts/cell_floor.hpp"
+#include "cuts/cell_rows.hpp"
+#include "cuts/cell_scratch.hpp"
+#include "cuts/monotone_key.hpp"
+#include "smb/box.hpp"
+
+namespace smb::detail {
+
+template <std::floating_point Real, int Dim>
+class CellPairs {
+public:
+    static constexpr std::uint32_t kAllInside = CellRows<Dim>::kAllInside;
+
+    /// Cells of up to this many registered boxes are checked by testing every pair: faster than
+    /// the sweep at the cells' usual ~46 boxes, and still at ~130 (a target population of 64);
+    /// its cost grows as m^2 / 16 lane groups, so crowds are swept.
+    static constexpr std::size_t kAllPairsLimit = 128;
+    /// check_all_pairs() packs a pair of local numbers as i << 16 | j in the lanes' signed
+    /// 32-bit integers: it takes cells of up to this many boxes (the pipeline's are at most
+    /// kAllPairsLimit).
+    static constexpr std::size_t kMostPaired = std::size_t{1} << 15;
+
+    /// Reports every pair of `entries` (positions of the boxes registered in the cell) whose
+    /// lower intersection corner lies in the cell, and appends to `home` the positions whose own
+    /// lower corner does: the order the next detection starts from. Returns the insertion-sort
+    /// moves (none when every pair is tested).
+    template <class Report, class Id>
+    std::size_t check(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
+                      std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report,
+                      std::vector<std::uint32_t>& home) {
+        if (entries.size() <= kAllPairsLimit) {
+            check_all_pairs(entries, boxes, floor, report, home);
+            return 0;
+        }
+        return check_by_sweep(entries, boxes, ids, floor, report, home);
+    }
+
+    /// Held boxes that overlap by at least `margin` on every axis (held_sure_margin()) hold
+    /// input boxes that overlap: the all-pairs test then calls report(a, b, true) where the
+    /// report takes a third argument, and report(a, b, false) for the other pairs it passes,
+    /// which the caller tests again. The default, infinity, proves nothing.
+    void set_sure_margin(float margin) noexcept { sure_margin_ = margin; }
+
+    /// check() by testing every pair; `home` gets the positions in the order of `entries`.
+    template <class Report>
+    void check_all_pairs(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
+                         const CellFloor<Real, Dim>& floor, Report& report, std::vector<std::uint32_t>& home) {
+        lay_out(entries, boxes, floor);
+        test_all_pairs(entries.size(), boxes, report, home);
+    }
+
+    /// check() by a sort and a sweep on x; `home` gets the positions in x order (ties by
+    /// coordinate and id). Returns the insertion-sort moves.
+    template <class Report, class Id>
+    std::size_t check_by_sweep(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
+                               std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report,
+                               std::vector<std::uint32_t>& home) {
+        const std::size_t m = entries.size();
+        order_.resize(m);
+        std::uint64_t* order = order_.data();
+        for (std::size_t i = 0; i < m; ++i)
+            order[i] = (std::uint64_t{monotone_key(boxes[entries[i]].min[0])} << 32) | i;
+        const std::size_t moves = insertion_sort(order, m);
+        order_equal_keys(order, m, entries, boxes, ids);
+        lay_out_sorted(order, m, entries, boxes, floor);
+        rows_.sweep(m, boxes, report);
+        append_home(m, home);
+        return moves;
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        return order_.capacity() * sizeof(std::uint64_t) + scratch_.bytes_held() +
+               own_home_.capacity() * sizeof(std::uint32_t);
+    }
+
+private:
+    // Four or eight candidates are tested at once (GCC vector extensions; FloatLanes), always on
+    // floats. Double boxes are laid out rounded to floats (to_float), which keeps every order,
+    // so the float test passes every pair that overlaps, and each pair it passes is tested
+    // again exactly. Four double lanes fill two SSE registers and are slower than one candidate
+    // at a time (and the layout takes twice the bytes); four float lanes fill one.
+    static constexpr std::size_t kPadding = 8;  // the most lanes
+
+    static constexpr bool kExactLanes = std::is_same_v<Real, float>;
+    using Mask = typename CellScratch<Dim>::Mask;
+
+    void lay_out_sorted(const std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
+                        std::span<const Box<Real, Dim>> boxes, const CellFloor<Real, Dim>& floor) {
+        lay_out_columns(m, 0, [&](std::size_t r) { return entries[order[r] & 0xFFFFFFFFU]; },
+                        [&](std::size_t r) { return static_cast<std::uint32_t>(order[r] >> 32); }, boxes, floor);
+    }
+
+    /// As registered, for the all-pairs test, which reads no keys, with room for every pair.
+    void lay_out(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
+                 const CellFloor<Real, Dim>& floor) {
+        const std::size_t m = entries.size();
+        lay_out_columns(m, m * (m - (m > 0 ? 1 : 0)) / 2 + kPadding, [&](std::size_t r) { return entries[r]; },
+                        NoKeys{}, boxes, floor);
+    }
+
+    struct NoKeys {};  // the all-pairs test reads no keys: none are written
+
+    template <class PositionAt, class KeyAt>
+    [[gnu::always_inline]] inline void lay_out_columns(std::size_t m, std::size_t hit_room, PositionAt position_at,
+                                                       KeyAt key_at, std::span<const Box<Real, Dim>> boxes,
+                                                       const CellFloor<Real, Dim>& floor) {
+        const std::size_t padded = m + kPadding;
+        rows_.columns = scratch_.lay_out_for(padded, hit_room);
+        for (std::size_t r = 0; r < m; ++r) {
+            const std::uint32_t position = position_at(r);
+            const Box<Real, Dim>& box = boxes[position];
+            std::uint32_t inside = 0;
+            for (int k = 0; k < Dim; ++k) {
+                rows_.columns.min[k][r] = to_float(box.min[k]);
+                rows_.columns.max[k][r] = to_float(box.max[k]);
+                inside |= (box.min[k] >= floor[k] ? 1U : 0U) << k;
+            }
+            rows_.columns.inside[r] = static_cast<Mask>(inside);
+            if constexpr (!std::is_same_v<KeyAt, NoKeys>) rows_.columns.key[r] = key_at(r);
+            rows_.columns.position[r] = position;
+        }
+        for (std::size_t r = m; r < padded; ++r) {
+            for (int k = 0; k < Dim; ++k) {
+                // NaN: no comparison with it holds, whatever the box it is tested against.
+                rows_.columns.min[k][r] = std::numeric_limits<float>::quiet_NaN();
+                rows_.columns.max[k][r] = -std::numeric_limits<float>::infinity();
+            }
+            rows_.columns.inside[r] = 0;
+            rows_.columns.key[r] = ~std::uint32_t{0};  // above the key of any finite max
+            rows_.columns.position[r] = 0;
+        }
+    }
+
+    // Every box i against every box after it, a group of lanes at a time, on all axes both ways
+    // (no order to lean on); the lanes past m hold the padding, which no test passes. The rows
+    // only write the hits down, without a branch (append_set_lanes); the report follows. A
+    // branch on each group's hits mispredicted about once a group in four.
+    template <class Report>
+    void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
+                        std::vector<std::uint32_t>& home) {
+        SMB_ASSERT(m <= kMostPaired, "a cell tested pair by pair packs two local numbers in 31 bits");
+        const std::size_t count = rows_.pair_rows(m);
+        const std::uint32_t* position = rows_.columns.position;
+        const std::uint32_t* hits = rows_.columns.hits;
+        for (std::size_t t = 0; t < count; ++t) {
+            const std::uint32_t i = hits[t] >> 16;
+            const std::uint32_t j = hits[t] & 0xFFFFU;
+            if constexpr (kExactLanes && std::invocable<Report&, std::uint32_t, std::uint32_t, bool>) {
+                // Exact input (an infinite margin) has nothing to settle: the test is skipped.
+                report(position[i], position[j], settles() && overlap_by_margin(i, j));
+            } else if (kExactLanes || overlaps(boxes[position[i]], boxes[position[j]])) {
+                report(position[i], position[j]);
+            }
+        }
+        append_home(m, home);
+    }
+
+    /// Whether the margin can settle anything: exact input has an infinite one.
+    [[nodiscard]] bool settles() const noexcept { return sure_margin_ != std::numeric_limits<float>::infinity(); }
+
+    // Whether laid-out boxes i and j overlap by at least the sure margin on every axis, read
+    // from the columns the rows just read (in L1), without a branch.
+    [[nodiscard]] bool overlap_by_margin(std::uint32_t i, std::uint32_t j) const noexcept {
+        bool by_margin = true;
+        for (int k = 0; k < Dim; ++k) {
+            const float* min = rows_.columns.min[k];
+            const float* max = rows_.columns.max[k];
+            by_margin &= (max[j] - min[i] >= sure_margin_) & (max[i] - min[j] >= sure_margin_);
+        }
+        return by_margin;
+    }
+
+    // Every box whose lower corner lies in the cell, in the order of the layout (x order when
+    // swept, as registered for the pair test); a branch here would guess wrong for one box in
+    // four. Gathered apart first: growing `home` by m and back would make it outgrow the
+    // capacity reserved for it, at the last cells.
+    void append_home(std::size_t m, std::vector<std::uint32_t>& home) {
+        if (own_home_.size() < m) own_home_.resize(m);
+        std::uint32_t* out = own_home_.data();
+        for (std::size_t r = 0; r < m; ++r) {
+            *out = rows_.columns.position[r];
+            out += rows_.columns.inside[r] == static_cast<Mask>(kAllInside) ? 1 : 0;
+        }
+        home.insert(home.end(), own_home_.data(), out);
+    }
+
+    // Boxes whose keys are equal arrive in an order that depends on the previous step; ordering
+    // them by exact coordinate and id makes the reported order a function of the boxes alone,
+    // so that detecting twice without changes reports the same list. Such runs are rare outside
+    // scenes of equal coordinates, where they are short.
+    template <class Id>
+    static void order_equal_keys(std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
+                                 std::span<const Box<Real, Dim>> boxes, std::span<const Id> ids) {
+        std::size_t run = 0;
+        for (std::size_t i = 1; i <= m; ++i) {
+            if (i < m && (order[i] >> 32) == (order[run] >> 32)) continue;
+            if (i - run > 1) {
+                std::sort(order + run, order + i, [&](std::uint64_t x, std::uint64_t y) {
+                    const std::uint32_t a = entries[x & 0xFFFFFFFFU];
+                    const std::uint32_t b = entries[y & 0xFFFFFFFFU];
+                    if (boxes[a].min[0] != boxes[b].min[0]) return boxes[a].min[0] < boxes[b].min[0];
+                    return ids[a] < ids[b];
+                });
+            }
+            run = i;
+        }
+    }
+
+    // DIS with the single increment 1: the cell's list follows last step's order, so only the
+    // boxes that moved past a neighbour, and those registered here from a neighbouring cell,
+    // are out of place. The keys carry the local numbers, so a move shifts 8 bytes, not a box.
+    static std::size_t insertion_sort(std::uint64_t* keys, std::size_t m) {
+        std::size_t moves = 0;
+        for (std::size_t i = 1; i < m; ++i) {
+            const std::uint64_t moving = keys[i];
+            std::size_t j = i;
+            while (j > 0 && moving < keys[j - 1]) {
+                keys[j] = keys[j - 1];
+                --j;
+            }
+            keys[j] = moving;
+            moves += i - j;
+        }
+        return moves;
+    }
+
+    std::vector<std::uint64_t> order_;
+    CellScratch<Dim> scratch_;
+    CellRows<Dim> rows_;  // the columns laid out in scratch_, and the row tests that read them
+    float sure_margin_ = std::numeric_limits<float>::infinity();
+    std::vector<std::uint32_t> own_home_;  // the cell's home boxes, on their way to `home`
+};
+
+}  // namespace smb::detail

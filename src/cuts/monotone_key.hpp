@@ -1,0 +1,41 @@
+#pragma once
+// The cell check's keys: coordinates as floats, and as 32-bit keys whose unsigned order is the
+// coordinates' order, for the sort on x of a crowded cell.
+
+#include <algorithm>
+#include <bit>
+#include <concepts>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
+namespace smb::detail {
+
+/// `value` as the nearest float; beyond the float range, the largest float of its sign (a
+/// plain conversion would be undefined there). Rounding never reverses an order: x <= y gives
+/// to_float(x) <= to_float(y), which is all the cell check asks of it.
+template <std::floating_point Real>
+[[nodiscard]] inline float to_float(Real value) noexcept {
+    if constexpr (std::is_same_v<Real, float>) {
+        return value;
+    } else {
+        constexpr auto top = static_cast<Real>(std::numeric_limits<float>::max());
+        return static_cast<float>(std::clamp(value, -top, top));
+    }
+}
+
+/// A 32-bit key that never decreases as `value` grows: `value` rounded down to float, with -0
+/// made +0 (they are equal coordinates), mapped so that unsigned order is numeric order.
+template <std::floating_point Real>
+[[nodiscard]] inline std::uint32_t monotone_key(Real value) noexcept {
+    const float rounded = to_float(value) + 0.0F;  // -0 + 0 = +0
+    const auto bits = std::bit_cast<std::uint32_t>(rounded);
+    std::uint32_t key = (bits & 0x80000000U) != 0 ? ~bits : bits | 0x80000000U;
+    if constexpr (!std::is_same_v<Real, float>) {
+        // Rounded up: the next key down is the next float down (never below -inf's key).
+        key -= static_cast<Real>(rounded) > value ? 1U : 0U;
+    }
+    return key;
+}
+
+}  // namespace smb::detail

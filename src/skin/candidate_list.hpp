@@ -1,0 +1,235 @@
+#pragma once
+// The skin list's candidates: the pairs of positions whose fat boxes overlap, each once, kept
+// from one detection to the next, and the pass that tests them all on the held boxes. A dropped
+// candidate becomes a tombstone, a pair of one position with itself, which the pass skips: the
+// list is written only where it changes, and closed up once tombstones are a thirty-second of it.
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/growth.hpp"
+#include "core/id_index.hpp"
+#include "core/ordered_rounds.hpp"
+#include "core/thread_team.hpp"
+#include "skin/held_overlap.hpp"
+#include "smb/box.hpp"
+#include "smb/pair.hpp"
+
+namespace smb::detail {
+
+template <int Dim>
+class CandidateList {
+public:
+    using Position = std::uint32_t;
+    using Held = Box<float, Dim>;
+    struct Candidate {
+        Position a;
+        Position b;
+    };
+    /// Below this many candidates one thread does the pass alone.
+    static constexpr std::size_t kParallelFrom = std::size_t{1} << 15;
+
+    /// Thrown by the collector of a rebuild once the list would pass its cap.
+    struct TooManyCandidates {};
+    /// Rebuild: collects the pipeline's pairs of fat boxes (slots, turned into positions after).
+    struct Collector {
+        std::vector<Candidate>& candidates;
+        std::size_t cap;
+        void operator()(BoxId a, BoxId b) {
+            if (candidates.size() >= cap) throw TooManyCandidates{};
+            candidates.push_back(Candidate{static_cast<Position>(a), static_cast<Position>(b)});
+        }
+        void append(std::span<const Pair> pairs) {
+            for (const Pair& pair : pairs) (*this)(pair.a, pair.b);
+        }
+    };
+
+    /// An empty list, and a collector that fills it with up to `cap` pairs of slots.
+    [[nodiscard]] Collector rebuild(std::size_t cap) {
+        candidates_.clear();
+        tombstones_ = 0;
+        return Collector{candidates_, cap};
+    }
+
+    /// The rebuilt pairs of slots become pairs of positions.
+    void renumber(std::span<const Position> position_of) {
+        for (Candidate& candidate : candidates_) {
+            candidate.a = position_of[candidate.a];
+            candidate.b = position_of[candidate.b];
+        }
+        // The list grew by doubling while the pipeline reported: up to twice what it holds.
+        // Kept with a sixteenth of room, as the arrays that follow N (growth.hpp).
+        if (candidates_.capacity() > candidates_.size() + candidates_.size() / 8) {
+            std::vector<Candidate> trimmed;
+            trimmed.reserve(candidates_.size() + candidates_.size() / 16);
+            trimmed.assign(candidates_.begin(), candidates_.end());
+            candidates_.swap(trimmed);
+        }
+    }
+
+    void add(Position p, Position q) {
+        reserve_with_slack(candidates_, candidates_.size() + 1);  // not doubling the list
+        candidates_.push_back(Candidate{p, q});
+    }
+
+    /// Candidates and tombstones.
+    [[nodiscard]] std::size_t size() const noexcept { return candidates_.size(); }
+    /// Candidates without the tombstones.
+    [[nodiscard]] std::size_t live() const noexcept { return candidates_.size() - tombstones_; }
+
+    /// What a pass reads: the held boxes by position (one more of padding, for overlap_bits()),
+    /// the positions dropped in this detection (a bit each), the sure margin, the caller's index
+    /// of each position, and confirm(a, b, sure, retested), which says whether a pair the floats
+    /// pass holds for the input too, counting in `retested` the pairs it tests again.
+    template <class Confirm>
+    struct Pass {
+        const Held* held;
+        const std::uint64_t* dirty;
+        float sure_margin;
+        std::span<const Slot> slot_of;
+        const Confirm& confirm;
+    };
+
+    /// Tests every candidate, after dropping those of boxes marked in pass.dirty when `dropping`,
+    /// and reports the pairs in the order of the list, whatever the number of threads. Returns the
+    /// pairs tested again on the input.
+    template <class Confirm, class Report>
+    std::size_t test(const Pass<Confirm>& pass, bool dropping, int threads, Report& report) {
+        const std::size_t count = candidates_.size();
+        workers_.resize(threads);
+        std::size_t retested = 0;
+        if (threads == 1 || count < kParallelFrom) {
+            Block& out = serial_;
+            out.pairs.clear();
+            out.retested = 0;
+            out.tombstones = 0;
+            test_range(pass, 0, count, dropping, workers_[0], out, [&] {
+                report.append(out.pairs);
+                out.pairs.clear();
+            });
+            report.append(out.pairs);
+            retested += out.retested;
+            tombstones_ += out.tombstones;
+        } else {
+            retested += test_in_rounds(pass, dropping, threads, report);
+        }
+        if (32 * tombstones_ > count) {
+            std::erase_if(candidates_, [](const Candidate& candidate) { return candidate.a == candidate.b; });
+            tombstones_ = 0;
+        }
+        return retested;
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        std::size_t bytes = candidates_.capacity() * sizeof(Candidate);
+        bytes += workers_.bytes_held([](const Worker& worker) {
+            return worker.hits.capacity() * sizeof(Candidate) + worker.sure.capacity();
+        });
+        for (const Block& block : blocks_) bytes += block.pairs.capacity() * sizeof(Pair);
+        return bytes + serial_.pairs.capacity() * sizeof(Pair);
+    }
+
+private:
+    static constexpr std::size_t kBlockCandidates = std::size_t{1} << 15;
+
+    /// The pairs found in one block of candidates, and its counts.
+    struct alignas(64) Block {
+        std::vector<Pair> pairs;
+        std::size_t retested = 0;
+        std::size_t tombstones = 0;
+    };
+    /// One thread's buffers: a run of hits waiting to become pairs.
+    struct Worker {
+        std::vector<Candidate> hits;
+        std::vector<std::uint8_t> sure;
+    };
+
+    /// Several threads: blocks of candidates in rounds, each block's pairs buffered, handed to
+    /// the report in list order on the calling thread (ordered_rounds.hpp). After a throwing
+    /// sink the blocks left are not tested; the list is rebuilt at the next detection anyway.
+    template <class Confirm, class Report>
+    std::size_t test_in_rounds(const Pass<Confirm>& pass, bool dropping, int threads, Report& report) {
+        const std::size_t count = candidates_.size();
+        const std::size_t blocks = (count + kBlockCandidates - 1) / kBlockCandidates;
+        const std::size_t round = 4 * static_cast<std::size_t>(threads);
+        std::size_t retested = 0;
+        run_in_ordered_rounds(
+            threads, blocks, round, blocks_,
+            [&](std::size_t item, Block& block) {
+                block.pairs.clear();
+                block.retested = 0;
+                block.tombstones = 0;
+                const std::size_t first = item * kBlockCandidates;
+                test_range(pass, first, std::min(first + kBlockCandidates, count), dropping, workers_.mine(), block,
+                           [] {});
+            },
+            [&](std::size_t, Block& block) {
+                retested += block.retested;
+                tombstones_ += block.tombstones;
+                report.append(block.pairs);
+            });
+        return retested;
+    }
+
+    /// Candidates [first, last) into `out`; flush() is called whenever a run of hits has become
+    /// pairs. Branch-free over the candidates (about half of them overlap, which no predictor
+    /// guesses).
+    template <class Confirm, class Flush>
+    void test_range(const Pass<Confirm>& pass, std::size_t first, std::size_t last, bool dropping, Worker& worker,
+                    Block& out, Flush&& flush) {
+        constexpr std::size_t kRun = 2048;
+        worker.hits.resize(kRun);
+        worker.sure.resize(kRun);
+        Candidate* candidates = candidates_.data();
+        const Held* held = pass.held;
+        const std::uint64_t* dirty = pass.dirty;
+        const float sure_margin = pass.sure_margin;
+        std::size_t hits = 0;
+        for (std::size_t i = first; i < last; ++i) {
+            const Candidate candidate = candidates[i];
+            std::uint32_t keep = 1;
+            if (dropping) {
+                keep = static_cast<std::uint32_t>(~((dirty[candidate.a >> 6] >> (candidate.a & 63)) |
+                                                    (dirty[candidate.b >> 6] >> (candidate.b & 63))) & 1U);
+                if (keep == 0 && candidate.a != candidate.b) {
+                    candidates[i] = Candidate{candidate.a, candidate.a};
+                    ++out.tombstones;
+                }
+            }
+            const std::uint32_t bits = overlap_bits<Dim>(held + candidate.a, held + candidate.b, sure_margin);
+            worker.hits[hits] = candidate;
+            worker.sure[hits] = static_cast<std::uint8_t>(bits >> 1);
+            hits += keep & bits;
+            if (hits == kRun) {
+                pairs_of_hits(pass, hits, worker, out);
+                flush();
+                hits = 0;
+            }
+        }
+        pairs_of_hits(pass, hits, worker, out);
+    }
+
+    /// The pairs of a run of hits, each confirmed on the input where the floats cannot settle it.
+    template <class Confirm>
+    static void pairs_of_hits(const Pass<Confirm>& pass, std::size_t hits, const Worker& worker, Block& out) {
+        for (std::size_t i = 0; i < hits; ++i) {
+            const Candidate hit = worker.hits[i];
+            if (hit.a == hit.b) continue;  // a tombstone
+            if (!pass.confirm(hit.a, hit.b, worker.sure[i] != 0, out.retested)) continue;
+            const BoxId a = pass.slot_of[hit.a];
+            const BoxId b = pass.slot_of[hit.b];
+            out.pairs.push_back(a < b ? Pair{a, b} : Pair{b, a});
+        }
+    }
+
+    std::vector<Candidate> candidates_;  // pairs of positions whose fat boxes overlap, each once; and tombstones
+    std::size_t tombstones_ = 0;         // candidates dropped in place (a pair of a position with itself)
+    PerThread<Worker> workers_;
+    std::vector<Block> blocks_;  // two rounds of blocks of candidates (several threads)
+    Block serial_;               // the pass on one thread
+};
+
+}  // namespace smb::detail
