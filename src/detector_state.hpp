@@ -2,7 +2,6 @@
 // What a Detector holds: its settings, the persistent-cut pipeline over the caller's array,
 // holding floats or a copy of the doubles (held_cut_pipeline.hpp), and the skin list.
 
-#include <chrono>
 #include <cstddef>
 #include <span>
 #include <type_traits>
@@ -12,6 +11,7 @@
 #include "core/pair_output.hpp"
 #include "core/scene_bounds.hpp"
 #include "core/settings_check.hpp"
+#include "core/stopwatch.hpp"
 #include "skin/skin_list.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
@@ -42,8 +42,7 @@ public:
     }
 
     DetectStats detect(std::span<const Box<Real, Dim>> boxes, const PairSink& sink) {
-        using Clock = std::chrono::steady_clock;
-        const auto start = Clock::now();
+        const Stopwatch whole;
         DetectStats stats;
         stats.boxes = boxes.size();
         SceneBounds<Real, Dim> bounds;
@@ -51,7 +50,7 @@ public:
             bounds = checked_bounds(boxes);  // throws before any change
             pipeline_.judge(boxes, bounds);
         }
-        stats.scan_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        stats.scan_seconds = whole.seconds();
 
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
         retested_ = 0;
@@ -65,7 +64,7 @@ public:
         }
         output.flush();
         stats.bytes_held = bytes_held();
-        stats.total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        stats.total_seconds = whole.seconds();
         stats_ = stats;
         return stats;
     }

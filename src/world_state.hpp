@@ -4,7 +4,6 @@
 // double boxes where floats resolve the scene (held_cut_pipeline.hpp), or the paper's lists.
 // The pairs are handed to the caller's sink in chunks from here, whichever pipeline found them.
 
-#include <chrono>
 #include <algorithm>
 #include <cstddef>
 #include <span>
@@ -16,6 +15,7 @@
 #include "core/box_store.hpp"
 #include "core/pair_output.hpp"
 #include "core/settings_check.hpp"
+#include "core/stopwatch.hpp"
 #include "cuts/held_cut_pipeline.hpp"
 #include "paper/paper_pipeline.hpp"
 #include "core/scene_bounds.hpp"
@@ -57,15 +57,14 @@ public:
     }
 
     DetectStats detect(const PairSink& sink) {
-        using Clock = std::chrono::steady_clock;
-        const auto start = Clock::now();
+        const Stopwatch whole;
         DetectStats stats;
         if (store_.has_removals()) {
             const bool paper = settings_.pipeline == Pipeline::paper_lists;
             const SlotRenumbering renumbering = store_.compact(paper ? paper_.listed() : persistent_.listed());
             if (paper) paper_.fold_removals(renumbering);
             else persistent_.fold_removals(renumbering);
-            stats.update_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+            stats.update_seconds = whole.seconds();
         }
         stats.boxes = store_.slot_count();
 
@@ -78,16 +77,16 @@ public:
         } else {
             // The store holds valid boxes only: this pass finds the bounds and throws nothing.
             // Float boxes are held as they are, and need no bounds.
-            const auto scan_start = Clock::now();
+            const Stopwatch scan;
             SceneBounds<Real, Dim> bounds;
             if constexpr (HeldCutPipeline<Real, Dim>::kMayRound) bounds = checked_bounds(store_.boxes());
             persistent_.judge(store_.boxes(), bounds);
-            stats.scan_seconds = std::chrono::duration<double>(Clock::now() - scan_start).count();
+            stats.scan_seconds = scan.seconds();
             persistent_.detect(store_.boxes(), store_.ids(), bounds, settings_, output, stats);
         }
         output.flush();
         stats.bytes_held = bytes_held();
-        stats.total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        stats.total_seconds = whole.seconds();
         stats_ = stats;
         return stats;
     }
