@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Settings that belong to each class: WorldSettings (the pipeline) and DetectorSettings (the
 // skin) share DetectionSettings; each is checked, and each error names the class it came in.
 
@@ -14,9 +15,13 @@ namespace smb {
 namespace {
 
 template <class Settings>
-concept HasPipeline = requires(Settings settings) { settings.pipeline; };
+concept HasPipeline = requires(Settings settings) {
+    settings.pipeline;
+};
 template <class Settings>
-concept HasSkin = requires(Settings settings) { settings.skin; };
+concept HasSkin = requires(Settings settings) {
+    settings.skin;
+};
 
 static_assert(std::is_base_of_v<DetectionSettings, WorldSettings>);
 static_assert(std::is_base_of_v<DetectionSettings, DetectorSettings>);
@@ -87,6 +92,22 @@ TEST(Settings, ErrorsNameTheClassTheSettingCameIn) {
     detector = {};
     detector.skin = std::numeric_limits<double>::quiet_NaN();
     EXPECT_NE(refusal<Detector2d>(detector).find("DetectorSettings::skin"), std::string::npos);
+}
+
+TEST(Settings, MessagesWriteNumbersAsTheCallerWouldWriteThem) {
+    DetectorSettings detector;
+    detector.skin = -0.1;
+    const std::string message = refusal<Detector3d>(detector);
+    EXPECT_NE(message.find("not -0.1"), std::string::npos) << message;
+    EXPECT_EQ(message.find("-0.100000"), std::string::npos) << message;
+
+    World3d world;
+    try {
+        world.insert(5, Box3d{{0, 0.1, 0}, {1, 0.05, 1}});
+        ADD_FAILURE() << "an inverted box was accepted";
+    } catch (const InvalidBoxError& error) {
+        EXPECT_NE(std::string(error.what()).find("ymin 0.1 > ymax 0.05"), std::string::npos) << error.what();
+    }
 }
 
 TEST(Settings, ThePairLimitErrorNamesTheClassTheLimitCameIn) {

@@ -1,6 +1,8 @@
+// SPDX-License-Identifier: MIT
 #include "smb/workload/dynamic_environment.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -16,9 +18,7 @@ constexpr double two_pow_minus_52 = 0x1.0p-52;
 constexpr double two_pow_minus_53 = 0x1.0p-53;
 
 /// Uniform in [0, 1).
-double unit_interval(std::mt19937_64& rng) {
-    return static_cast<double>(rng() >> 11) * two_pow_minus_53;
-}
+double unit_interval(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * two_pow_minus_53; }
 
 /// Uniform in the open interval (-1, 1), symmetric about 0: the odd multiples of 2^-52 in
 /// (-1, 1) are all exactly representable, so no rounding can reach either bound.
@@ -46,49 +46,47 @@ double reflect_into(double value, double low, double high) {
     return std::clamp(value, low, high);
 }
 
+/// The shortest text that reads back to `value` (0.5, not 0.500000).
+std::string shortest_number(double value) {
+    char text[64];
+    return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+}
+
 void require(bool condition, const std::string& message) {
     if (!condition) throw std::invalid_argument("dynamic environment: " + message);
 }
 
 }  // namespace
 
-double cube_side_for_density(std::size_t box_count, double packing_density, double min_side,
-                             double max_side, int dim) {
+double cube_side_for_density(std::size_t box_count, double packing_density, double min_side, double max_side, int dim) {
     const double mean_side = (min_side + max_side) / 2;
     return mean_side * std::pow(static_cast<double>(box_count) / packing_density, 1.0 / dim);
 }
 
-double density_for_cube_side(std::size_t box_count, double cube_side, double min_side,
-                             double max_side, int dim) {
+double density_for_cube_side(std::size_t box_count, double cube_side, double min_side, double max_side, int dim) {
     const double mean_side = (min_side + max_side) / 2;
     return static_cast<double>(box_count) * std::pow(mean_side / cube_side, dim);
 }
 
 template <int Dim>
-DynamicEnvironment<Dim>::DynamicEnvironment(const EnvironmentParams& params)
-    : params_(params), rng_(params.seed) {
-    require(std::isfinite(params.size_ratio) && params.size_ratio >= 1,
-            "the size ratio H must be at least 1");
-    require(std::isfinite(params.update_factor) && params.update_factor >= 0 &&
-                params.update_factor < 1,
+DynamicEnvironment<Dim>::DynamicEnvironment(const EnvironmentParams& params) : params_(params), rng_(params.seed) {
+    require(std::isfinite(params.size_ratio) && params.size_ratio >= 1, "the size ratio H must be at least 1");
+    require(std::isfinite(params.update_factor) && params.update_factor >= 0 && params.update_factor < 1,
             "the update factor must lie in [0, 1)");
     max_side_ = 1;
     min_side_ = max_side_ / params.size_ratio;
     if (params.cube_side) {
         cube_side_ = *params.cube_side;
         require(std::isfinite(cube_side_), "the cube side must be finite");
-        packing_density_ =
-            density_for_cube_side(params.box_count, cube_side_, min_side_, max_side_, Dim);
+        packing_density_ = density_for_cube_side(params.box_count, cube_side_, min_side_, max_side_, Dim);
     } else {
         require(std::isfinite(params.packing_density) && params.packing_density > 0,
                 "the packing density E must be positive");
         packing_density_ = params.packing_density;
-        cube_side_ =
-            cube_side_for_density(params.box_count, packing_density_, min_side_, max_side_, Dim);
+        cube_side_ = cube_side_for_density(params.box_count, packing_density_, min_side_, max_side_, Dim);
     }
-    require(cube_side_ >= max_side_,
-            "the cube side x = " + std::to_string(cube_side_) +
-                " is smaller than the largest box side b = 1 (lower E or raise N)");
+    require(cube_side_ >= max_side_, "the cube side x = " + shortest_number(cube_side_) +
+                                         " is smaller than the largest box side b = 1 (lower E or raise N)");
 
     place_new_boxes(params.box_count);
     publish_changes(0);

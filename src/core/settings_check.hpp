@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The checks of WorldSettings and DetectorSettings, over the DetectionSettings they share.
 
@@ -5,6 +6,7 @@
 #include <cstddef>
 #include <string>
 
+#include "core/shortest_number.hpp"
 #include "smb/errors.hpp"
 #include "smb/settings.hpp"
 
@@ -36,7 +38,7 @@ inline void check_detection_settings(const DetectionSettings& settings, const st
     check_detection_settings(settings, "DetectorSettings");
     if (!(settings.skin >= 0) || !std::isfinite(settings.skin))
         throw ArgumentError("DetectorSettings::skin must be finite and at least 0, not " +
-                            std::to_string(settings.skin));
+                            shortest_number(settings.skin));
     return settings;
 }
 
