@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the machine's memory gives a second thread, apart from smb: the ceiling on the speedup of
 // the passes that are bound by memory (the gather of the caller's boxes in cell order, the cell
 // lists' reads and writes). Two access patterns smb's step is made of, on one thread and on two:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The axial cut's quantiles (src/cuts/quantile_select.hpp): recursive selection against the radix
 // sort, on fresh keys at every iteration. Repeating one input would let the branch predictor
 // learn the selection's comparisons and flatter it several times over, which is not what a cut

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Google Benchmark of one smb::World (and of one smb::Detector): the time of detect() per step
 // on the paper's dynamic environment and on the edge scenes of docs/algorithm.md. Only detect() is timed (manual
 // time from DetectStats): generating the scene and feeding the world are outside.
@@ -21,7 +22,8 @@ namespace {
 void report(benchmark::State& state, const smb::DetectStats& stats) {
     state.SetIterationTime(stats.total_seconds);
     state.counters["pairs"] = static_cast<double>(stats.pairs);
-    state.counters["bytes_per_box"] = stats.boxes ? static_cast<double>(stats.bytes_held) / static_cast<double>(stats.boxes) : 0.0;
+    state.counters["bytes_per_box"] =
+        stats.boxes ? static_cast<double>(stats.bytes_held) / static_cast<double>(stats.boxes) : 0.0;
     state.counters["scan_ms"] = 1e3 * stats.scan_seconds;
     state.counters["quantile_ms"] = 1e3 * stats.quantile_seconds;
     state.counters["cut_regroup_ms"] = 1e3 * stats.cut_regroup_seconds;
@@ -51,11 +53,21 @@ void paper_step(benchmark::State& state) {
         report(state, world.detect(pairs));
     }
 }
-BENCHMARK(paper_step<3>)->ArgNames({"N", "Lambda_e6"})
-    ->Args({100000, 1000})->Args({200000, 1000})->Args({200000, 10000})->Args({200000, 100000})
-    ->Iterations(10)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(paper_step<2>)->ArgNames({"N", "Lambda_e6"})->Args({200000, 1000})
-    ->Iterations(10)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(paper_step<3>)
+    ->ArgNames({"N", "Lambda_e6"})
+    ->Args({100000, 1000})
+    ->Args({200000, 1000})
+    ->Args({200000, 10000})
+    ->Args({200000, 100000})
+    ->Iterations(10)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(paper_step<2>)
+    ->ArgNames({"N", "Lambda_e6"})
+    ->Args({200000, 1000})
+    ->Iterations(10)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// The same environment through smb::Detector over an array in which each body keeps its index
 /// (kept outside the timing, as the simulation's own array would be): args are N and Λ·1e6.
@@ -83,13 +95,26 @@ void paper_step_detector(benchmark::State& state) {
     }
 }
 // Args: N, Λ·1e6, and the skin (DetectorSettings::skin) in thousandths, 0 for none.
-BENCHMARK(paper_step_detector<3>)->ArgNames({"N", "Lambda_e6", "skin_e3"})
-    ->Args({100000, 1000, 0})->Args({200000, 1000, 0})->Args({200000, 10000, 0})->Args({200000, 100000, 0})
-    ->Args({200000, 10, 0})->Args({200000, 10, 100})->Args({200000, 1000, 100})
-    ->Iterations(10)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(paper_step_detector<2>)->ArgNames({"N", "Lambda_e6", "skin_e3"})
-    ->Args({200000, 1000, 0})->Args({200000, 10, 0})->Args({200000, 10, 100})
-    ->Iterations(10)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(paper_step_detector<3>)
+    ->ArgNames({"N", "Lambda_e6", "skin_e3"})
+    ->Args({100000, 1000, 0})
+    ->Args({200000, 1000, 0})
+    ->Args({200000, 10000, 0})
+    ->Args({200000, 100000, 0})
+    ->Args({200000, 10, 0})
+    ->Args({200000, 10, 100})
+    ->Args({200000, 1000, 100})
+    ->Iterations(10)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(paper_step_detector<2>)
+    ->ArgNames({"N", "Lambda_e6", "skin_e3"})
+    ->Args({200000, 1000, 0})
+    ->Args({200000, 10, 0})
+    ->Args({200000, 10, 100})
+    ->Iterations(10)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// Scenes of the deviations in docs/algorithm.md, 3D, N = arg boxes of sides in [0.4, 1].
 enum class EdgeScene { kLayer, kFloor, kWalls, kJump, kIdentical };
@@ -122,7 +147,10 @@ std::vector<smb::Box3d> edge_boxes(EdgeScene scene, std::size_t n, std::mt19937_
             break;
         }
         case EdgeScene::kFloor:
-            for (auto& box : boxes) { box.min[2] += 1.0; box.max[2] += 1.0; }
+            for (auto& box : boxes) {
+                box.min[2] += 1.0;
+                box.max[2] += 1.0;
+            }
             boxes[0] = smb::Box3d{{-1, -1, 0}, {side + 1, side + 1, 1.2}};
             break;
         case EdgeScene::kWalls:
@@ -156,10 +184,30 @@ void edge_scene(benchmark::State& state, EdgeScene scene) {
         report(state, world.detect(pairs));
     }
 }
-BENCHMARK_CAPTURE(edge_scene, layer, EdgeScene::kLayer)->Arg(200000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(edge_scene, floor, EdgeScene::kFloor)->Arg(200000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(edge_scene, walls, EdgeScene::kWalls)->Arg(200000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(edge_scene, jump, EdgeScene::kJump)->Arg(200000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(edge_scene, identical, EdgeScene::kIdentical)->Arg(5000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(edge_scene, layer, EdgeScene::kLayer)
+    ->Arg(200000)
+    ->Iterations(5)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(edge_scene, floor, EdgeScene::kFloor)
+    ->Arg(200000)
+    ->Iterations(5)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(edge_scene, walls, EdgeScene::kWalls)
+    ->Arg(200000)
+    ->Iterations(5)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(edge_scene, jump, EdgeScene::kJump)
+    ->Arg(200000)
+    ->Iterations(5)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(edge_scene, identical, EdgeScene::kIdentical)
+    ->Arg(5000)
+    ->Iterations(5)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smb_check_uniform_grid: the comparison's uniform grid (peers/uniform_grid.hpp) against testing
 // every pair, on inputs that stress its exactness: boxes touching on integer coordinates (so
 // on cell borders), flat boxes and points, coordinates far from the origin, a few boxes far
@@ -30,22 +31,22 @@ void make_boxes(std::mt19937_64& rng, std::size_t count, Layout layout, std::vec
         for (int k = 0; k < Dim; ++k) {
             float low = 0, extent = 0;
             switch (layout) {
-            case Layout::touching:
-                low = static_cast<float>(rng() % 20);
-                extent = static_cast<float>(rng() % 3);
-                break;
-            case Layout::mixed_sizes:
-                low = static_cast<float>(rng() % 1000) * 0.1f;
-                extent = rng() % 50 == 0 ? static_cast<float>(rng() % 40) : static_cast<float>(rng() % 10) * 0.1f;
-                break;
-            case Layout::far_from_origin:
-                low = 1e6f + static_cast<float>(rng() % 100) * 0.0625f;
-                extent = static_cast<float>(rng() % 16) * 0.0625f;
-                break;
-            case Layout::flat_and_points:
-                low = -50.0f + static_cast<float>(rng() % 100);
-                extent = rng() % 4 == 0 ? 1.0f : 0.0f;
-                break;
+                case Layout::touching:
+                    low = static_cast<float>(rng() % 20);
+                    extent = static_cast<float>(rng() % 3);
+                    break;
+                case Layout::mixed_sizes:
+                    low = static_cast<float>(rng() % 1000) * 0.1f;
+                    extent = rng() % 50 == 0 ? static_cast<float>(rng() % 40) : static_cast<float>(rng() % 10) * 0.1f;
+                    break;
+                case Layout::far_from_origin:
+                    low = 1e6f + static_cast<float>(rng() % 100) * 0.0625f;
+                    extent = static_cast<float>(rng() % 16) * 0.0625f;
+                    break;
+                case Layout::flat_and_points:
+                    low = -50.0f + static_cast<float>(rng() % 100);
+                    extent = rng() % 4 == 0 ? 1.0f : 0.0f;
+                    break;
             }
             boxes[i].min[k] = low;
             boxes[i].max[k] = low + extent;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "heap_meter.hpp"
 
 #include <malloc.h>
@@ -29,8 +30,7 @@ void note_allocated(void* block) noexcept {
     const auto size = static_cast<std::int64_t>(malloc_usable_size(block));
     const auto now = live.fetch_add(size, std::memory_order_relaxed) + size;
     std::int64_t highest = peak.load(std::memory_order_relaxed);
-    while (now > highest && !peak.compare_exchange_weak(highest, now, std::memory_order_relaxed)) {
-    }
+    while (now > highest && !peak.compare_exchange_weak(highest, now, std::memory_order_relaxed)) {}
 }
 
 void note_freed(void* block) noexcept {
@@ -69,7 +69,8 @@ void* realloc(void* block, std::size_t size) {
     const std::size_t old_size = block != nullptr ? malloc_usable_size(block) : 0;
     void* moved = __libc_realloc(block, size);
     if (moved != nullptr || size == 0) {
-        if (counting.load(std::memory_order_relaxed)) live.fetch_sub(static_cast<std::int64_t>(old_size), std::memory_order_relaxed);
+        if (counting.load(std::memory_order_relaxed))
+            live.fetch_sub(static_cast<std::int64_t>(old_size), std::memory_order_relaxed);
         note_allocated(moved);
     }
     return moved;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Heap bytes allocated by the method under measurement. smb_compare replaces glibc's malloc
 // family with thin wrappers (glibc supports this: "Replacing malloc" in its manual) that count

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A fingerprint of one step's pair set, so that methods run in separate processes can be
 // compared exactly without writing millions of pairs to disk.

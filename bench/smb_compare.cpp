@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smb_compare: runs ONE broad-phase method on ONE scene and prints one JSON line with its
 // timings, peak memory and a digest of every step's pair set. One process per method and
 // scene keeps each peak memory its own; scripts/bench-compare.py runs the whole matrix.
@@ -100,13 +101,15 @@ double median_of(std::vector<double> values) {
 
 // Untimed: every reported pair must be an exact closed overlap of the step's boxes.
 template <int Dim>
-void check_exact(const SceneStep<Dim>& step, const std::vector<Pair>& pairs, std::vector<std::uint32_t>& position_of_id) {
+void check_exact(const SceneStep<Dim>& step, const std::vector<Pair>& pairs,
+                 std::vector<std::uint32_t>& position_of_id) {
     BoxId largest = 0;
     for (BoxId id : step.ids) largest = std::max(largest, id);
     position_of_id.assign(largest + 1, ~std::uint32_t{0});
     for (std::size_t i = 0; i < step.size(); ++i) position_of_id[step.ids[i]] = static_cast<std::uint32_t>(i);
     for (const Pair& pair : pairs) {
-        if (pair.b > largest || position_of_id[pair.a] == ~std::uint32_t{0} || position_of_id[pair.b] == ~std::uint32_t{0})
+        if (pair.b > largest || position_of_id[pair.a] == ~std::uint32_t{0} ||
+            position_of_id[pair.b] == ~std::uint32_t{0})
             throw std::logic_error("pair names a box that is not in the step");
         if (!overlaps(step.boxes[position_of_id[pair.a]], step.boxes[position_of_id[pair.b]]))
             throw std::logic_error("pair of boxes that do not overlap");
@@ -153,8 +156,10 @@ int run(const RunOptions& options) {
         const auto start = Clock::now();
         if (peer) {
             const heap_meter::CountingScope count_method_heap;
-            if (index == 0) peer->build(step, pairs);
-            else peer->step(step, pairs);
+            if (index == 0)
+                peer->build(step, pairs);
+            else
+                peer->step(step, pairs);
         }
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
         const double cpu_seconds = process_cpu_seconds() - cpu_start;
@@ -181,8 +186,8 @@ int run(const RunOptions& options) {
     const std::vector<double> steady_cpu(step_cpu_seconds.begin() + early_count, step_cpu_seconds.end());
 
     std::ostringstream json;
-    json << "{\"method\":\"" << options.method << "\",\"family\":\"" << options.scene.family
-         << "\",\"dim\":" << Dim << ",\"boxes\":" << options.scene.boxes << ",\"lambda\":" << options.scene.update_factor
+    json << "{\"method\":\"" << options.method << "\",\"family\":\"" << options.scene.family << "\",\"dim\":" << Dim
+         << ",\"boxes\":" << options.scene.boxes << ",\"lambda\":" << options.scene.update_factor
          << ",\"seed\":" << options.scene.seed << ",\"steps\":" << options.steps << ",\"first_boxes\":" << first_boxes
          << ",\"max_boxes\":" << most_boxes << ",\"first_step_s\":" << first_seconds
          << ",\"median_step_s\":" << median_of(step_seconds) << ",\"early_steps\":" << early.size()
@@ -191,11 +196,11 @@ int run(const RunOptions& options) {
          << ",\"steady_median_cpu_s\":" << median_of(steady_cpu) << ",\"min_step_s\":"
          << (step_seconds.empty() ? 0.0 : *std::min_element(step_seconds.begin(), step_seconds.end()))
          << ",\"peak_rss_bytes\":" << peak_rss_bytes() << ",\"resident_before_bytes\":" << resident_before
-         << ",\"resident_peak_bytes\":" << resident_peak_bytes() << ",\"heap_meter\":"
-         << (heap_meter::available() ? "true" : "false") << ",\"heap_peak_bytes\":" << heap_meter::peak_bytes()
-         << ",\"heap_live_bytes\":" << heap_meter::live_bytes() << ",\"pair_list_grew\":"
-         << (pair_list_grew ? "true" : "false") << ",\"pair_list_bytes\":" << pair_capacity * sizeof(Pair)
-         << ",\"step_s\":[";
+         << ",\"resident_peak_bytes\":" << resident_peak_bytes()
+         << ",\"heap_meter\":" << (heap_meter::available() ? "true" : "false")
+         << ",\"heap_peak_bytes\":" << heap_meter::peak_bytes() << ",\"heap_live_bytes\":" << heap_meter::live_bytes()
+         << ",\"pair_list_grew\":" << (pair_list_grew ? "true" : "false")
+         << ",\"pair_list_bytes\":" << pair_capacity * sizeof(Pair) << ",\"step_s\":[";
     for (std::size_t i = 0; i < step_seconds.size(); ++i) json << (i ? "," : "") << step_seconds[i];
     json << "],\"pairs\":[";
     for (std::size_t i = 0; i < pair_counts.size(); ++i) json << (i ? "," : "") << pair_counts[i];
@@ -246,14 +251,22 @@ int main_with_arguments(int argc, char** argv) {
         values[flag.substr(2)] = argv[++i];
     }
     for (const auto& [key, value] : values) {
-        if (key == "method") options.method = value;
-        else if (key == "scene") options.scene.family = value;
-        else if (key == "dim") options.scene.dimension = std::stoi(value);
-        else if (key == "boxes") options.scene.boxes = std::stoull(value);
-        else if (key == "lambda") options.scene.update_factor = std::stod(value);
-        else if (key == "seed") options.scene.seed = std::stoull(value);
-        else if (key == "steps") options.steps = std::stoull(value);
-        else if (key == "early-steps") options.early_steps = std::stoull(value);
+        if (key == "method")
+            options.method = value;
+        else if (key == "scene")
+            options.scene.family = value;
+        else if (key == "dim")
+            options.scene.dimension = std::stoi(value);
+        else if (key == "boxes")
+            options.scene.boxes = std::stoull(value);
+        else if (key == "lambda")
+            options.scene.update_factor = std::stod(value);
+        else if (key == "seed")
+            options.scene.seed = std::stoull(value);
+        else if (key == "steps")
+            options.steps = std::stoull(value);
+        else if (key == "early-steps")
+            options.early_steps = std::stoull(value);
         else {
             std::cerr << "unknown option --" << key << '\n' << usage_text;
             return 2;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Sequences of changes to an array of boxes, each followed by a Detector call, on arbitrary
 // coordinates (the hostile table and raw bytes of world_ops_check.hpp): the check behind the
@@ -24,8 +25,8 @@ namespace smb::fuzz {
 namespace detector_ops_detail {
 
 using world_ops_detail::broken_promise;
-using world_ops_detail::check_detection;
 using world_ops_detail::ByteReader;
+using world_ops_detail::check_detection;
 using world_ops_detail::decode_box;
 using world_ops_detail::decode_coordinate;
 using world_ops_detail::kMaxBoxes;
@@ -54,11 +55,21 @@ private:
     void step(ByteReader& in) {
         switch (in.byte() % 7) {
             case 0:
-            case 1: append(in); break;
-            case 2: replace(in); break;
-            case 3: swap_remove(in); break;
-            case 4: shift_all(in); break;
-            case 5: detect_and_compare(in.byte() % 2 == 1); break;
+            case 1:
+                append(in);
+                break;
+            case 2:
+                replace(in);
+                break;
+            case 3:
+                swap_remove(in);
+                break;
+            case 4:
+                shift_all(in);
+                break;
+            case 5:
+                detect_and_compare(in.byte() % 2 == 1);
+                break;
             case 6:
                 if (in.byte() % 8 == 0) detector_.clear();
                 break;
@@ -78,8 +89,10 @@ private:
         if (boxes_.empty()) return;
         const std::size_t index = in.byte() % boxes_.size();
         const BoxT box = decode_box<Real, Dim>(in);
-        if (smb::is_valid(box)) boxes_[index] = box;
-        else offer_invalid(index, box);
+        if (smb::is_valid(box))
+            boxes_[index] = box;
+        else
+            offer_invalid(index, box);
     }
 
     void swap_remove(ByteReader& in) {
@@ -108,8 +121,10 @@ private:
     /// an InvalidBoxError naming the index, and change nothing.
     void offer_invalid(std::size_t index, const BoxT& bad) {
         std::vector<BoxT> offered = boxes_;
-        if (index == offered.size()) offered.push_back(bad);
-        else offered[index] = bad;
+        if (index == offered.size())
+            offered.push_back(bad);
+        else
+            offered[index] = bad;
         std::vector<smb::Pair> pairs;
         try {
             detector_.detect(offered, pairs);
@@ -128,9 +143,8 @@ private:
             for (std::size_t b = a + 1; b < boxes_.size(); ++b)
                 if (smb::overlaps(boxes_[a], boxes_[b])) expected.push_back({a, b});
 
-        check_detection(expected, detector_.settings(), through_sink, [&](auto& pairs_or_sink) {
-            detector_.detect(boxes_, pairs_or_sink);
-        });
+        check_detection(expected, detector_.settings(), through_sink,
+                        [&](auto& pairs_or_sink) { detector_.detect(boxes_, pairs_or_sink); });
     }
 
     smb::Detector<Real, Dim> detector_;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: changes to an array of boxes on hostile coordinates, each followed by a
 // Detector call checked against brute force (see detector_ops_check.hpp). A broken promise
 // throws, which libFuzzer reports as a crash.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: the scene CSV reader of the smb tool on arbitrary bytes (see
 // scene_csv_check.hpp). Anything but a CsvError, or a broken promise, escapes as a crash.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: sequences of World operations on hostile coordinates against a mirror
 // model (see world_ops_check.hpp). A broken promise throws, which libFuzzer reports as a crash.
 

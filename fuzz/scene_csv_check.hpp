@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The scene CSV reader of the smb tool on arbitrary bytes: the check behind the fuzz_scene_csv
 // target and behind the replay of its inputs in the tests.
@@ -20,17 +21,14 @@ namespace smb::fuzz {
 
 namespace scene_csv_detail {
 
-[[noreturn]] inline void broken_promise(const char* what) {
-    throw std::logic_error(std::string("scene CSV: ") + what);
-}
+[[noreturn]] inline void broken_promise(const char* what) { throw std::logic_error(std::string("scene CSV: ") + what); }
 
 template <int Dim>
 std::vector<smb::io::SceneFrame<Dim>> read_frames(smb::io::SceneReader& reader) {
     std::vector<smb::io::SceneFrame<Dim>> frames;
     smb::io::SceneFrame<Dim> frame;
     while (reader.read_frame(frame)) {
-        if (!frames.empty() && frame.number <= frames.back().number)
-            broken_promise("frame numbers do not increase");
+        if (!frames.empty() && frame.number <= frames.back().number) broken_promise("frame numbers do not increase");
         if (frame.ids.size() != frame.boxes.size()) broken_promise("ids and boxes differ in length");
         for (std::size_t i = 0; i < frame.ids.size(); ++i) {
             if (i > 0 && frame.ids[i - 1] >= frame.ids[i]) broken_promise("ids not increasing");
@@ -46,8 +44,7 @@ void check_round_trip(const std::vector<smb::io::SceneFrame<Dim>>& frames) {
     std::ostringstream out;
     {
         smb::io::SceneWriter writer(out, Dim);
-        for (const auto& frame : frames)
-            writer.write_frame<Dim>(frame.number, frame.ids, frame.boxes);
+        for (const auto& frame : frames) writer.write_frame<Dim>(frame.number, frame.ids, frame.boxes);
         writer.flush();
     }
     std::istringstream in(out.str());

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Sequences of World operations on arbitrary coordinates, checked against a mirror model: the
 // check behind the fuzz_world_ops target and behind the replay of its inputs in the tests.
@@ -181,14 +182,30 @@ private:
     void step(ByteReader& in) {
         switch (in.byte() % 10) {
             case 0:
-            case 1: insert_one(in); break;
-            case 2: insert_many(in); break;
-            case 3: remove_one(in); break;
-            case 4: remove_many(in); break;
-            case 5: update_one(in); break;
-            case 6: update_many(in); break;
-            case 7: assign(in); break;
-            case 8: detect_and_compare(in.byte() % 2 == 1); break;
+            case 1:
+                insert_one(in);
+                break;
+            case 2:
+                insert_many(in);
+                break;
+            case 3:
+                remove_one(in);
+                break;
+            case 4:
+                remove_many(in);
+                break;
+            case 5:
+                update_one(in);
+                break;
+            case 6:
+                update_many(in);
+                break;
+            case 7:
+                assign(in);
+                break;
+            case 8:
+                detect_and_compare(in.byte() % 2 == 1);
+                break;
             case 9:
                 if (in.byte() % 8 == 0) {
                     world_.clear();
@@ -219,8 +236,7 @@ private:
             ids.push_back(decode_id(in));
             boxes.push_back(decode_box<Real, Dim>(in));
             if (!smb::is_valid(boxes.back())) expected |= kInvalidBox;
-            if (model_.count(ids.back()) != 0 || !seen.insert(ids.back()).second)
-                expected |= kDuplicateId;
+            if (model_.count(ids.back()) != 0 || !seen.insert(ids.back()).second) expected |= kDuplicateId;
         }
         if (in.byte() % 16 == 0) {
             boxes.push_back(BoxT{});
@@ -363,8 +379,7 @@ private:
         for (const auto& [id, box] : model_) {
             if (!world_.contains(id)) broken_promise("a rejected call lost a box");
             const BoxT held = world_.box(id);
-            if (!(held == box))
-                broken_promise("a rejected call changed a box");
+            if (!(held == box)) broken_promise("a rejected call changed a box");
         }
     }
 
@@ -374,9 +389,8 @@ private:
             for (auto b = std::next(a); b != model_.end(); ++b)
                 if (smb::overlaps(a->second, b->second)) expected.push_back({a->first, b->first});
 
-        check_detection(expected, world_.settings(), through_sink, [&](auto& pairs_or_sink) {
-            world_.detect(pairs_or_sink);
-        });
+        check_detection(expected, world_.settings(), through_sink,
+                        [&](auto& pairs_or_sink) { world_.detect(pairs_or_sink); });
     }
 
     World world_;
@@ -395,10 +409,18 @@ void run_decoded(const std::uint8_t* data, std::size_t size) {
     const std::uint8_t limit = in.byte();
     if (limit < 64) settings.max_pairs_held = limit;
     switch (kind % 4) {
-        case 0: Checker<float, 2>(settings).run(in); break;
-        case 1: Checker<double, 2>(settings).run(in); break;
-        case 2: Checker<float, 3>(settings).run(in); break;
-        default: Checker<double, 3>(settings).run(in); break;
+        case 0:
+            Checker<float, 2>(settings).run(in);
+            break;
+        case 1:
+            Checker<double, 2>(settings).run(in);
+            break;
+        case 2:
+            Checker<float, 3>(settings).run(in);
+            break;
+        default:
+            Checker<double, 3>(settings).run(in);
+            break;
     }
 }
 

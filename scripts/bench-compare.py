@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Runs the side-by-side comparison: every method on every scene, one process each.
 
 Each run is `smb_compare --method M --scene ...` (bench/smb_compare.cpp), which prints one JSON

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Builds smb_compare in release mode and runs the side-by-side comparison, then the plots.
 #   scripts/bench-compare.sh [quick|full] [machine-name] [build-dir]
 # Results: bench/results/<machine-name>/<mode>.csv, .jsonl, -tables.md and PNG plots.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Times the first (build) step of several methods side by side on the paper's scenes.
 
 Runs `smb_compare --steps 1 --no-check` for every method, dimension and size, round after round

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """The headline comparison: smb against the best uniform grid and the established broad phases
 on the paper's workload, one process per method and scene (smb_compare), in one command.
 

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Builds smb_compare in release mode and runs the headline comparison (scripts/bench-headline.py):
 # the paper's workload at 1M boxes in 3D and 100k in 2D, smb against the uniform grid, Bullet's
 # DBVT and Box2D's tree, 40 steps, the build step and the steady state apart.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Time per box against N: `smb run` (the paper's 3D environment, double coordinates) at each N,
 one process per run, with 1 and 2 threads. Writes a CSV and prints a Markdown table.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Times two or more builds of `smb` side by side on one `smb run` scene.
 
 The builds run in alternating rounds (A, B, A, B, ...), so that the noise of a shared machine

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs one libFuzzer target for a given time:
 #   scripts/fuzz.sh <scene_csv|world_ops|detector_ops> <seconds>
 # Configures and builds the fuzz build (clang++, address + undefined-behaviour sanitizers,

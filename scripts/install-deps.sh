@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs the Debian packages smb needs to build, test, run and plot. Does nothing when they
 # are all present already, so it is cheap to call from every other script.
 set -euo pipefail
@@ -15,6 +16,8 @@ packages=(
   libfmt-dev
   python3-numpy
   python3-matplotlib
+  # the code's format (.clang-format; scripts/format.sh --check in scripts/test.sh)
+  clang-format
   # libFuzzer targets (fuzz/, scripts/fuzz.sh): clang with its sanitizer and fuzzer runtimes
   clang-14
   libclang-rt-14-dev

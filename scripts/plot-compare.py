@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Plots and tables from a comparison CSV written by scripts/bench-compare.py.
 
 Writes next to the CSV (bench/results/<machine>/):

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Draws the reproduction's figures like the paper's Figs 6-12 and writes its tables of fits.
 
 Reads <dir>/<mode>-4.1.csv, -4.2.csv and -4.3.csv (written by scripts/reproduce.py) and writes

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reproduces the experiments of the paper's Section 4 (Li, Feng & Owen 2006) with `smb run`.
 
 Every configuration runs in its own process (`smb run --json --no-check`), so the peak resident

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds smb (Release, into build/) and runs `smb run` with the given arguments:
 #   bash scripts/run.sh                 the default scene
 #   bash scripts/run.sh --help          every option

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """How many boxes leave their skin per step under the paper's motion, by simulation.
 
 The paper's environment moves every centre coordinate by a fresh uniform random amount in

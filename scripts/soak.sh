@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Long runs of docs/robustness.md, with smb_soak from a Release build (build-hard/, or
 # SMB_HARD_BUILD_DIR):
 #   scripts/soak.sh soak  [steps]   100 000 boxes in 3D, 20% removed and as many inserted every

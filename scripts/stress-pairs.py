@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Randomised odd scenes through `smb pairs`, checked against a brute force.
 
 Each trial writes a scene CSV (2D or 3D, up to 2000 boxes, 1 to 4 frames with deletions,

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The whole check, as CI runs it:
+#   0. every C++ source formatted as .clang-format says (scripts/format.sh --check);
 #   1. Release build with warnings as errors and the SMB invariant checks on (build-ci/),
 #      every test;
 #   2. address + undefined-behaviour sanitizer build (build-ci-asan/), every test but the
@@ -16,6 +18,9 @@ release_dir=${SMB_CI_BUILD_DIR:-build-ci}
 asan_dir=${SMB_CI_ASAN_BUILD_DIR:-build-ci-asan}
 
 bash scripts/install-deps.sh
+
+echo "== Format (clang-format) =="
+bash scripts/format.sh --check
 
 echo "== Release build (warnings as errors, SMB_VALIDATE) =="
 cmake -S . -B "$release_dir" -DCMAKE_BUILD_TYPE=Release \

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "smb/detector.hpp"
 
 #include <functional>

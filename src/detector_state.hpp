@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a Detector holds: its settings, the persistent-cut pipeline over the caller's array,
 // holding floats or a copy of the doubles (held_cut_pipeline.hpp), and the skin list.
@@ -7,11 +8,11 @@
 #include <type_traits>
 #include <vector>
 
-#include "cuts/held_cut_pipeline.hpp"
 #include "core/pair_output.hpp"
 #include "core/scene_bounds.hpp"
 #include "core/settings_check.hpp"
 #include "core/stopwatch.hpp"
+#include "cuts/held_cut_pipeline.hpp"
 #include "skin/skin_list.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
@@ -70,8 +71,7 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() +
-               chunk_.capacity() * sizeof(Pair);
+        return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() + chunk_.capacity() * sizeof(Pair);
     }
 
 private:

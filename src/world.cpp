@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "smb/world.hpp"
 
 #include <functional>
@@ -161,8 +162,7 @@ std::size_t World<Real, Dim>::bytes_held() const noexcept {
 }
 
 template <std::floating_point Real, int Dim>
-std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> boxes,
-                                         const WorldSettings& settings) {
+std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> boxes, const WorldSettings& settings) {
     World<Real, Dim> world(settings);
     world.assign(boxes);
     std::vector<Pair> pairs;
@@ -170,10 +170,9 @@ std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> boxes,
     return pairs;
 }
 
-#define SMB_INSTANTIATE(Real, Dim)                                                        \
-    template class World<Real, Dim>;                                                      \
-    template std::vector<Pair> find_overlapping_pairs<Real, Dim>(std::span<const Box<Real, Dim>>, \
-                                                                 const WorldSettings&);
+#define SMB_INSTANTIATE(Real, Dim)   \
+    template class World<Real, Dim>; \
+    template std::vector<Pair> find_overlapping_pairs<Real, Dim>(std::span<const Box<Real, Dim>>, const WorldSettings&);
 
 SMB_INSTANTIATE(float, 2)
 SMB_INSTANTIATE(double, 2)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a World holds: its boxes (box_store.hpp), its settings, and the pipeline that finds the
 // overlapping pairs, chosen by WorldSettings::pipeline: the persistent cuts, holding floats of
@@ -14,11 +15,11 @@
 
 #include "core/box_store.hpp"
 #include "core/pair_output.hpp"
+#include "core/scene_bounds.hpp"
 #include "core/settings_check.hpp"
 #include "core/stopwatch.hpp"
 #include "cuts/held_cut_pipeline.hpp"
 #include "paper/paper_pipeline.hpp"
-#include "core/scene_bounds.hpp"
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/settings.hpp"
@@ -62,8 +63,10 @@ public:
         if (store_.has_removals()) {
             const bool paper = settings_.pipeline == Pipeline::paper_lists;
             const SlotRenumbering renumbering = store_.compact(paper ? paper_.listed() : persistent_.listed());
-            if (paper) paper_.fold_removals(renumbering);
-            else persistent_.fold_removals(renumbering);
+            if (paper)
+                paper_.fold_removals(renumbering);
+            else
+                persistent_.fold_removals(renumbering);
             stats.update_seconds = whole.seconds();
         }
         stats.boxes = store_.slot_count();

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Tests of the workload library, the CSV I/O and the smb tool. Included by tests/CMakeLists.txt,
 # which defines smb_add_gtest().
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Hardening: hostile-input tests of the smb tool, the libFuzzer targets (fuzz/) and the soak and
 # scale programs (bench/soak/). Included by tests/CMakeLists.txt, which defines smb_add_gtest().
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Smoke test of the Section 4 reproduction (scripts/reproduce.py, scripts/plot-reproduction.py):
 # the smoke mode (N / 500, two timed steps, every run checked against the grid reference) must
 # write the three CSVs with rows, and the plots when numpy and matplotlib are there.

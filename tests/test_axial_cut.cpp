@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The axial cut (src/paper/axial_cut.hpp): equal counts, never between equal coordinates.
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The box store's compaction (src/core/box_store.hpp, src/core/slot_renumbering.hpp): under random
 // inserts and removals, with any number of slots listed by a pipeline, every old slot is mapped
 // to the slot its box now has (or to none, removed), the listed survivors keep the first slots,

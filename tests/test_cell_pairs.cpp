@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The cell check (src/cuts/cell_pairs.hpp) both ways: testing every pair and sweeping on x
 // report the same pairs and the same home boxes as a direct test under the lower-corner rule, at
 // every size around the limit between them, in float and double, with the boxes registered in
@@ -144,10 +145,9 @@ TYPED_TEST(CellPairsTest, AllPairsAndSweepReportTheSamePairsOnce) {
             EXPECT_EQ(all_pairs.reports, expected.size()) << "a pair reported twice";
             EXPECT_EQ(all_pairs.home, home) << "home boxes in the order they were registered";
 
-            const auto swept = run_check<Real, Dim>(
-                [&](auto& report, auto& out) {
-                    cell_pairs.check_by_sweep(entries, boxes, ids, cell.floor, report, out);
-                });
+            const auto swept = run_check<Real, Dim>([&](auto& report, auto& out) {
+                cell_pairs.check_by_sweep(entries, boxes, ids, cell.floor, report, out);
+            });
             EXPECT_EQ(swept.pairs, expected);
             EXPECT_EQ(swept.reports, expected.size()) << "a pair reported twice";
             EXPECT_TRUE(std::is_sorted(swept.home.begin(), swept.home.end(), [&](std::uint32_t a, std::uint32_t b) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What smb says and returns for bad arguments and for output it could not write: the exit
 // statuses that `smb --help` states, the same as tools/smb/README.md states, are the ones it
 // returns.
@@ -14,9 +15,7 @@ namespace smb::cli_test {
 namespace {
 
 /// The text with every run of white space (a line break included) made one space.
-std::string collapsed(const std::string& text) {
-    return std::regex_replace(text, std::regex(R"(\s+)"), " ");
-}
+std::string collapsed(const std::string& text) { return std::regex_replace(text, std::regex(R"(\s+)"), " "); }
 
 /// The "Exit status: ..." sentence of `smb --help`.
 std::string exit_status_sentence() {
@@ -64,17 +63,17 @@ TEST(CliArguments, EveryArgumentErrorGivesTheDocumentedStatus) {
     ASSERT_GT(usage, 2);
     TempFolder folder;
     const std::vector<std::vector<std::string>> bad_arguments{
-        {},                                             // no command
-        {"--frobnicate"},                               // unknown option before the command
-        {"pairs", "--frobnicate"},                      // unknown option
-        {"pairs", "--pairs-in-memory", "1"},            // out of range
-        {"pairs", "--input"},                           // missing value
-        {"generate", "--side", "20", "-E", "0.3"},      // options that exclude each other
-        {"generate", "-n", "many"},                     // not a number
-        {"run", "--dim", "4"},                          // not one of the choices
-        {"run", "-L", "1.5"},                           // out of range
-        {"run", "-n", "-5"},                            // negative count
-        {"run", "--threads", "2000"},                   // beyond WorldSettings' 1024
+        {},                                                // no command
+        {"--frobnicate"},                                  // unknown option before the command
+        {"pairs", "--frobnicate"},                         // unknown option
+        {"pairs", "--pairs-in-memory", "1"},               // out of range
+        {"pairs", "--input"},                              // missing value
+        {"generate", "--side", "20", "-E", "0.3"},         // options that exclude each other
+        {"generate", "-n", "many"},                        // not a number
+        {"run", "--dim", "4"},                             // not one of the choices
+        {"run", "-L", "1.5"},                              // out of range
+        {"run", "-n", "-5"},                               // negative count
+        {"run", "--threads", "2000"},                      // beyond WorldSettings' 1024
         {"run", "-n", "100", "-s", "2", "--skin", "0.1"},  // checked once parsed: needs a detector
     };
     for (const auto& arguments : bad_arguments) {
@@ -128,8 +127,8 @@ TEST(CliArguments, UnwritableStandardOutputFailsEveryCommand) {
         std::string shown;
         for (const auto& argument : arguments) shown += argument + ' ';
         EXPECT_EQ(result.status, 1) << shown << '\n' << result.err;
-        EXPECT_NE(result.err.find("smb: error: writing to standard output failed"), std::string::npos)
-            << shown << '\n' << result.err;
+        EXPECT_NE(result.err.find("smb: error: writing to standard output failed"), std::string::npos) << shown << '\n'
+                                                                                                       << result.err;
     }
 }
 

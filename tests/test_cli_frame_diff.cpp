@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The split of a frame into removals, updates and insertions that `smb pairs` feeds to World.
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `smb generate` and `smb run` end to end: the written scene is exactly the workload library's
 // environment, and `smb run` reports and checks what it measured.
 
@@ -17,9 +18,8 @@ namespace {
 
 TEST(CliGenerate, WritesExactlyTheEnvironment) {
     TempFolder folder;
-    const auto result =
-        run_smb(folder, {"generate", "--dim", "3", "-n", "300", "-s", "4", "-E", "0.3", "-H", "4",
-                         "-L", "0.02", "--seed", "9", "-o", "scene.csv"});
+    const auto result = run_smb(folder, {"generate", "--dim", "3", "-n", "300", "-s", "4", "-E", "0.3", "-H", "4", "-L",
+                                         "0.02", "--seed", "9", "-o", "scene.csv"});
     ASSERT_EQ(result.status, 0) << result.err;
 
     workload::EnvironmentParams params;
@@ -78,7 +78,7 @@ TEST(CliGenerate, ImpossibleParametersFailCleanly) {
 }
 
 /// The phases of smb::DetectStats, each under its field's name without "_seconds".
-const std::vector<std::string> kPhaseKeys{"check",     "containment", "cut_regroup", "list_sort",
+const std::vector<std::string> kPhaseKeys{"check",    "containment", "cut_regroup", "list_sort",
                                           "quantile", "scan",        "update"};
 
 std::vector<std::string> phase_keys(const nlohmann::json& phases) {
@@ -113,16 +113,14 @@ TEST(CliRun, JsonSummaryOfASmallRun) {
     EXPECT_LE(phase_sum(build_phases), summary["build_seconds"].get<double>());
     EXPECT_EQ(phase_keys(build_phases), kPhaseKeys);
     EXPECT_EQ(phase_keys(summary["phase_seconds_median"]), kPhaseKeys);
-    EXPECT_LE(summary["detect_seconds"]["min"].get<double>(),
-              summary["detect_seconds"]["median"].get<double>());
+    EXPECT_LE(summary["detect_seconds"]["min"].get<double>(), summary["detect_seconds"]["median"].get<double>());
     EXPECT_LE(summary["detect_seconds"]["min"].get<double>(), summary["detect_seconds"]["mean"].get<double>());
     EXPECT_LE(summary["detect_seconds"]["mean"].get<double>(), summary["detect_seconds"]["max"].get<double>());
     EXPECT_GE(summary["detect_cpu_seconds"]["median"].get<double>(), 0);
     EXPECT_GT(summary["pairs"]["last"].get<std::size_t>(), 0u);
     EXPECT_GT(summary["bytes_per_box"].get<double>(), 0);
     EXPECT_GT(summary["boxes"]["median"].get<double>(), 0);
-    EXPECT_GT(summary["peak_rss_bytes"].get<std::size_t>(),
-              summary["bytes_held"].get<std::size_t>());
+    EXPECT_GT(summary["peak_rss_bytes"].get<std::size_t>(), summary["bytes_held"].get<std::size_t>());
     EXPECT_TRUE(summary["check"]["ok"].get<bool>());
     EXPECT_EQ(summary["check"]["steps_checked"], 1);
     EXPECT_EQ(summary["check"]["last_checked_step"], 10);
@@ -147,8 +145,8 @@ TEST(CliRun, PaperPipelineTimesItsListSortsNotQuantiles) {
 
 TEST(CliRun, CheckEveryK2d) {
     TempFolder folder;
-    const auto result = run_smb(
-        folder, {"run", "--dim", "2", "-n", "1500", "-s", "10", "--check-every", "3", "--json"});
+    const auto result =
+        run_smb(folder, {"run", "--dim", "2", "-n", "1500", "-s", "10", "--check-every", "3", "--json"});
     ASSERT_EQ(result.status, 0) << result.err;
     const auto summary = nlohmann::json::parse(result.out);
     EXPECT_EQ(summary["dimension"], 2);
@@ -188,8 +186,7 @@ TEST(CliRun, DetectorWithASkinChecksEveryStepAndSaysHowItKeptItsCandidates) {
     EXPECT_EQ(summary["check"]["steps_checked"], 12);
     EXPECT_TRUE(summary["check"]["ok"].get<bool>());
     EXPECT_LT(summary["skin_steps"]["rebuilt"].get<std::size_t>(), 11U);
-    EXPECT_GT(summary["skin_steps"]["candidates_median"].get<double>(),
-              summary["pairs"]["median"].get<double>());
+    EXPECT_GT(summary["skin_steps"]["candidates_median"].get<double>(), summary["pairs"]["median"].get<double>());
     // A detector takes its boxes whole: it has no updates to apply, and checks its array.
     EXPECT_EQ(summary["phase_seconds_median"]["update"].get<double>(), 0);
     EXPECT_GT(summary["phase_seconds_median"]["scan"].get<double>(), 0);

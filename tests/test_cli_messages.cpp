@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // How smb writes numbers in what it tells the user: a count takes the singular noun only when it
 // is 1 ("1 frame", "2 frames"), and a number reads as the user wrote it or in its shortest form
 // ("not 0.1", never std::to_string's "0.100000").
@@ -19,9 +20,7 @@ bool has_fixed_six_decimals(const std::string& text) {
     return std::regex_search(text, std::regex(R"(\d\.\d{6}(?!\d))"));
 }
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 TEST(CliMessages, GenerateCountsFramesInTheSingularForOne) {
     TempFolder folder;
@@ -54,8 +53,7 @@ TEST(CliMessages, RunSummaryCountsStepsInTheSingularForOne) {
     ASSERT_EQ(skin.status, 0) << skin.err;
     EXPECT_TRUE(std::regex_search(skin.out, std::regex(R"(rebuilt in [01] of 1 step;)"))) << skin.out;
     for (const std::string& text : {one.out, two.out, three.out, skin.out}) {
-        EXPECT_FALSE(std::regex_search(text, std::regex(R"(\b1 (steps|frames|pairs|candidates|boxes)\b)")))
-            << text;
+        EXPECT_FALSE(std::regex_search(text, std::regex(R"(\b1 (steps|frames|pairs|candidates|boxes)\b)"))) << text;
     }
 }
 
@@ -89,8 +87,7 @@ TEST(CliMessages, TooSmallCubeReadsInShortestForm) {
     TempFolder folder;
     const auto side = run_smb(folder, {"generate", "-n", "3", "-s", "1", "--side", "0.5"});
     EXPECT_EQ(side.status, 1);
-    EXPECT_TRUE(contains(side.err, "the cube side x = 0.5 is smaller than the largest box side b = 1"))
-        << side.err;
+    EXPECT_TRUE(contains(side.err, "the cube side x = 0.5 is smaller than the largest box side b = 1")) << side.err;
     const auto density = run_smb(folder, {"run", "-n", "1", "-E", "0.9"});
     EXPECT_EQ(density.status, 1);
     EXPECT_TRUE(contains(density.err, "the cube side x = 0.7250209180559003 is smaller")) << density.err;
@@ -98,8 +95,7 @@ TEST(CliMessages, TooSmallCubeReadsInShortestForm) {
 
     const auto empty = run_smb(folder, {"generate", "-n", "0", "-s", "1"});
     EXPECT_EQ(empty.status, 1);
-    EXPECT_TRUE(contains(empty.err, "an empty scene (N = 0) has no cube side at a density: give --side"))
-        << empty.err;
+    EXPECT_TRUE(contains(empty.err, "an empty scene (N = 0) has no cube side at a density: give --side")) << empty.err;
     const auto empty_with_side = run_smb(folder, {"generate", "-n", "0", "-s", "2", "--side", "5"});
     EXPECT_EQ(empty_with_side.status, 0) << empty_with_side.err;
     EXPECT_EQ(empty_with_side.out, "frame,id,xmin,ymin,zmin,xmax,ymax,zmax\n");

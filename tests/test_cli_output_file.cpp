@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The tool's output files appear only when complete: written beside the target, renamed on
 // commit, removed when abandoned.
 
@@ -32,9 +33,7 @@ protected:
         text << in.rdbuf();
         return text.str();
     }
-    std::size_t entries() const {
-        return static_cast<std::size_t>(std::distance(fs::directory_iterator(folder_), {}));
-    }
+    std::size_t entries() const { return static_cast<std::size_t>(std::distance(fs::directory_iterator(folder_), {})); }
 
     fs::path folder_;
 };

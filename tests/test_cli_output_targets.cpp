@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Where `smb pairs -o` and `smb generate -o` write: a symbolic link stays a link and its final
 // target gets the content; a FIFO or a device is written into, never replaced; a regular file is
 // replaced only by a complete output. Devices are private nodes in the test's folder (mknod), so
@@ -23,9 +24,7 @@ namespace {
 const std::string scene_2d = "frame,id,xmin,ymin,xmax,ymax\n0,1,0,0,1,1\n0,2,0.5,0.5,2,2\n";
 const std::string pairs_2d = "frame,a,b\n0,1,2\n";
 
-std::vector<std::string> pairs_into(const std::string& output) {
-    return {"pairs", "-i", "scene.csv", "-o", output};
-}
+std::vector<std::string> pairs_into(const std::string& output) { return {"pairs", "-i", "scene.csv", "-o", output}; }
 
 bool is_link(const fs::path& path) { return fs::is_symlink(fs::symlink_status(path)); }
 
@@ -76,8 +75,7 @@ TEST(CliOutputTargets, DanglingLinkCreatesItsTarget) {
     TempFolder folder;
     fs::create_directories(folder / "out");
     fs::create_symlink("out/new.csv", folder / "link.csv");
-    const auto result =
-        run_smb(folder, {"generate", "--dim", "2", "-n", "5", "-s", "2", "-o", "link.csv"});
+    const auto result = run_smb(folder, {"generate", "--dim", "2", "-n", "5", "-s", "2", "-o", "link.csv"});
     ASSERT_EQ(result.status, 0) << result.err;
     EXPECT_TRUE(is_link(folder / "link.csv"));
     EXPECT_TRUE(read_file(folder / "out" / "new.csv").starts_with("frame,id,xmin,ymin,xmax,ymax\n"));
@@ -91,8 +89,7 @@ TEST(CliOutputTargets, LoopOfLinksIsRefused) {
     fs::create_symlink("a.csv", folder / "b.csv");
     const auto result = run_smb(folder, pairs_into("a.csv"));
     EXPECT_EQ(result.status, 1);
-    EXPECT_NE(result.err.find("cannot write 'a.csv': too many symbolic links"), std::string::npos)
-        << result.err;
+    EXPECT_NE(result.err.find("cannot write 'a.csv': too many symbolic links"), std::string::npos) << result.err;
     EXPECT_TRUE(is_link(folder / "a.csv"));
     EXPECT_TRUE(is_link(folder / "b.csv"));
     EXPECT_EQ(folder.entry_count(), 3u);
@@ -231,8 +228,7 @@ TEST(CliOutputTargets, FullDeviceReportsTheWriteError) {
     if (full_device.empty()) GTEST_SKIP() << "no character device to write safely";
     const auto pairs = run_smb(folder, pairs_into(full_device.string()));
     EXPECT_EQ(pairs.status, 1);
-    EXPECT_NE(pairs.err.find("smb: error: writing failed for '" + full_device.string() + "'"),
-              std::string::npos)
+    EXPECT_NE(pairs.err.find("smb: error: writing failed for '" + full_device.string() + "'"), std::string::npos)
         << pairs.err;
     EXPECT_TRUE(fs::is_character_file(fs::symlink_status(full_device)));
     const auto generate = run_smb(folder, {"generate", "-n", "5", "-s", "1", "-o", full_device.string()});

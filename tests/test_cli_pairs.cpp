@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `smb pairs` end to end: the built binary on small scene files, compared with expected pair
 // files and with brute force on generated scenes; error exits, messages and leftover files.
 
@@ -15,8 +16,8 @@
 #include <vector>
 
 #include "pair_csv.hpp"
-#include "scene_csv.hpp"
 #include "reference/brute_force.hpp"
+#include "scene_csv.hpp"
 #include "test_cli_support.hpp"
 
 namespace smb::cli_test {
@@ -45,8 +46,8 @@ std::vector<io::FramePair> parse_pairs(const std::string& text) {
 
 TEST(CliPairs, FixtureFileToFile) {
     TempFolder folder;
-    const auto result = run_smb(
-        folder, {"pairs", "--input", data_file("basic_3d.csv").string(), "--output", "pairs.csv"});
+    const auto result =
+        run_smb(folder, {"pairs", "--input", data_file("basic_3d.csv").string(), "--output", "pairs.csv"});
     ASSERT_EQ(result.status, 0) << result.err;
     EXPECT_EQ(read_file(folder / "pairs.csv"), read_file(data_file("basic_3d.pairs.csv")));
     EXPECT_EQ(folder.entry_count(), 1u);  // no temporary left behind
@@ -54,16 +55,14 @@ TEST(CliPairs, FixtureFileToFile) {
 
 TEST(CliPairs, CrlfWithoutFinalNewline) {
     TempFolder folder;
-    const auto result =
-        run_smb(folder, {"pairs", "-i", data_file("crlf_2d.csv").string(), "-o", "-"});
+    const auto result = run_smb(folder, {"pairs", "-i", data_file("crlf_2d.csv").string(), "-o", "-"});
     ASSERT_EQ(result.status, 0) << result.err;
     EXPECT_EQ(result.out, read_file(data_file("crlf_2d.pairs.csv")));
 }
 
 TEST(CliPairs, StandardInputAndOutput) {
     TempFolder folder;
-    const auto dashes =
-        run_smb(folder, {"pairs", "--input", "-", "--output", "-"}, data_file("basic_3d.csv"));
+    const auto dashes = run_smb(folder, {"pairs", "--input", "-", "--output", "-"}, data_file("basic_3d.csv"));
     ASSERT_EQ(dashes.status, 0) << dashes.err;
     EXPECT_EQ(dashes.out, read_file(data_file("basic_3d.pairs.csv")));
     EXPECT_TRUE(dashes.err.empty());
@@ -84,8 +83,8 @@ template <int Dim>
 void expect_generated_scene_matches_brute_force(const std::string& dimension) {
     TempFolder folder;
     // A large update factor makes boxes appear and disappear every step.
-    const auto generated = run_smb(folder, {"generate", "--dim", dimension, "-n", "400", "-s", "6",
-                                            "-L", "0.05", "--seed", "3", "-o", "scene.csv"});
+    const auto generated = run_smb(folder, {"generate", "--dim", dimension, "-n", "400", "-s", "6", "-L", "0.05",
+                                            "--seed", "3", "-o", "scene.csv"});
     ASSERT_EQ(generated.status, 0) << generated.err;
     const auto result = run_smb(folder, {"pairs", "-i", "scene.csv", "-o", "pairs.csv"});
     ASSERT_EQ(result.status, 0) << result.err;
@@ -94,12 +93,8 @@ void expect_generated_scene_matches_brute_force(const std::string& dimension) {
     EXPECT_EQ(parse_pairs(read_file(folder / "pairs.csv")), expected);
 }
 
-TEST(CliPairs, GeneratedScene3dMatchesBruteForce) {
-    expect_generated_scene_matches_brute_force<3>("3");
-}
-TEST(CliPairs, GeneratedScene2dMatchesBruteForce) {
-    expect_generated_scene_matches_brute_force<2>("2");
-}
+TEST(CliPairs, GeneratedScene3dMatchesBruteForce) { expect_generated_scene_matches_brute_force<3>("3"); }
+TEST(CliPairs, GeneratedScene2dMatchesBruteForce) { expect_generated_scene_matches_brute_force<2>("2"); }
 
 struct BadScene {
     const char* name;
@@ -116,8 +111,7 @@ TEST_P(CliPairsErrors, ExitNonZeroNamingFileAndLineAndLeaveNoOutput) {
     write_file(folder / "scene.csv", bad.text);
     const auto result = run_smb(folder, {"pairs", "-i", "scene.csv", "-o", "pairs.csv"});
     EXPECT_EQ(result.status, 1);
-    EXPECT_NE(result.err.find("scene.csv:" + std::to_string(bad.line) + ": "), std::string::npos)
-        << result.err;
+    EXPECT_NE(result.err.find("scene.csv:" + std::to_string(bad.line) + ": "), std::string::npos) << result.err;
     EXPECT_NE(result.err.find(bad.words), std::string::npos) << result.err;
     EXPECT_FALSE(fs::exists(folder / "pairs.csv"));
     EXPECT_EQ(folder.entry_count(), 1u);  // only scene.csv: no temporary either
@@ -128,20 +122,19 @@ const std::string good_frames = std::string(header_2d) + "0,1,0,0,1,1\n0,2,0.5,0
 
 INSTANTIATE_TEST_SUITE_P(
     EveryMalformedCase, CliPairsErrors,
-    ::testing::Values(
-        BadScene{"EmptyFile", "", 1, "empty file"},
-        BadScene{"UnknownHeader", "frame,id,x,y,z\n", 1, "unknown header"},
-        BadScene{"WrongColumnCount", good_frames + "1,1,0,0,1\n", 4, "expected 6 fields"},
-        BadScene{"TextInNumber", good_frames + "1,1,0,zero,1,1\n", 4, "not a number"},
-        BadScene{"NaN", good_frames + "1,1,0,NaN,1,1\n", 4, "not finite"},
-        BadScene{"Infinity", good_frames + "1,1,0,0,inf,1\n", 4, "not finite"},
-        BadScene{"MinAboveMax", good_frames + "1,1,2,0,1,1\n", 4, "xmin 2 is greater than xmax 1"},
-        BadScene{"DuplicateId", good_frames + "1,1,0,0,1,1\n1,1,0,0,1,1\n", 5, "appears twice"},
-        BadScene{"FramesOutOfOrder", good_frames + "3,1,0,0,1,1\n2,1,0,0,1,1\n", 5,
-                 "frames must not decrease"},
-        BadScene{"NegativeFrame", good_frames + "-1,1,0,0,1,1\n", 4, "negative"},
-        BadScene{"NegativeId", good_frames + "1,-1,0,0,1,1\n", 4, "negative"},
-        BadScene{"IdOverflow", good_frames + "1,99999999999999999999,0,0,1,1\n", 4, "64 bits"}),
+    ::testing::Values(BadScene{"EmptyFile", "", 1, "empty file"},
+                      BadScene{"UnknownHeader", "frame,id,x,y,z\n", 1, "unknown header"},
+                      BadScene{"WrongColumnCount", good_frames + "1,1,0,0,1\n", 4, "expected 6 fields"},
+                      BadScene{"TextInNumber", good_frames + "1,1,0,zero,1,1\n", 4, "not a number"},
+                      BadScene{"NaN", good_frames + "1,1,0,NaN,1,1\n", 4, "not finite"},
+                      BadScene{"Infinity", good_frames + "1,1,0,0,inf,1\n", 4, "not finite"},
+                      BadScene{"MinAboveMax", good_frames + "1,1,2,0,1,1\n", 4, "xmin 2 is greater than xmax 1"},
+                      BadScene{"DuplicateId", good_frames + "1,1,0,0,1,1\n1,1,0,0,1,1\n", 5, "appears twice"},
+                      BadScene{"FramesOutOfOrder", good_frames + "3,1,0,0,1,1\n2,1,0,0,1,1\n", 5,
+                               "frames must not decrease"},
+                      BadScene{"NegativeFrame", good_frames + "-1,1,0,0,1,1\n", 4, "negative"},
+                      BadScene{"NegativeId", good_frames + "1,-1,0,0,1,1\n", 4, "negative"},
+                      BadScene{"IdOverflow", good_frames + "1,99999999999999999999,0,0,1,1\n", 4, "64 bits"}),
     [](const auto& instance) { return std::string(instance.param.name); });
 
 TEST(CliPairs, FailedRunKeepsThePreviousOutputFile) {
@@ -195,8 +188,7 @@ TEST(CliPairs, ReadingATerminalSaysSo) {
         ::_exit(127);
     }
     const std::string said = read_until(terminal, "Ctrl-D", std::chrono::seconds(10));
-    EXPECT_NE(said.find("smb pairs: reading a scene CSV from standard input"), std::string::npos)
-        << said;
+    EXPECT_NE(said.find("smb pairs: reading a scene CSV from standard input"), std::string::npos) << said;
     // End of input at the start of a line: the empty input is refused as an empty file.
     ASSERT_EQ(::write(terminal, "\x04", 1), 1);
     const std::string rest = read_until(terminal, "empty file", std::chrono::seconds(10));

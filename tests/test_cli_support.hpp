@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Running the built `smb` binary from end-to-end tests. SMB_CLI_PATH and SMB_CLI_DATA_DIR come
 // from tests/cli.cmake.
@@ -24,9 +25,7 @@ inline std::string read_file(const fs::path& path) {
     return text.str();
 }
 
-inline void write_file(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
+inline void write_file(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 /// A fresh folder under the system's temporary folder, removed with everything in it.
 class TempFolder {

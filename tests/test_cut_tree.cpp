@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The persistent cut planes (src/cuts/cut_tree.hpp): equal-count cuts, exact on small groups and
 // from an evenly spaced sample on large ones, and the location of values against them.
 
@@ -41,7 +42,8 @@ TEST(CutTree, LargeGroupsAreCutFromASampleWithinAFewPercentOfEven) {
     std::vector<double> keys(1000000);
     for (double& key : keys) key = coordinate(random);
     QuantileSelector<double> scratch;
-    tree.cut_group(0, 0, keys.size(), [&](std::size_t i) { return keys[i]; }, scratch);
+    tree.cut_group(
+        0, 0, keys.size(), [&](std::size_t i) { return keys[i]; }, scratch);
     EXPECT_EQ(scratch.keys.size(), (CutTree<double, 2>::kSamplePerSegment * 40));
     const auto counts = segment_counts(tree, keys);
     const double even = static_cast<double>(keys.size()) / 40.0;
@@ -59,7 +61,8 @@ TEST(CutTree, EqualKeysShareASegment) {
     for (std::size_t i = 0; i < 1000; ++i) keys[i * 100] = static_cast<double>(i);
     QuantileSelector<double> scratch;
     // The group is sampled (100000 keys, 8 segments).
-    tree.cut_group(0, 0, keys.size(), [&](std::size_t i) { return keys[i]; }, scratch);
+    tree.cut_group(
+        0, 0, keys.size(), [&](std::size_t i) { return keys[i]; }, scratch);
     const auto planes = tree.cuts(0, 0);
     const std::uint32_t of_three = segment_of(planes, 3.0);
     // Every key 3.0 is in one segment, whatever the planes.
@@ -85,7 +88,8 @@ TEST(CutTree, SegmentNearAgreesWithSegmentOf) {
         const bool off = hint > planes.size() || found + 1 < hint || found > hint + 1;
         ASSERT_EQ(misses, off ? 1U : 0U) << "hint " << hint << ", segment " << found;
         ASSERT_EQ(segment_of(std::span<const double>(planes).first(40), v),
-                  static_cast<std::uint32_t>(std::count_if(planes.begin(), planes.begin() + 40, [&](double p) { return p <= v; })));
+                  static_cast<std::uint32_t>(
+                      std::count_if(planes.begin(), planes.begin() + 40, [&](double p) { return p <= v; })));
     }
 }
 
@@ -112,7 +116,8 @@ TEST(CutTree, SegmentOfMaxIsTheMaxSegmentUpToTwoPastTheMin) {
         tree.reshape(k);
         for (std::size_t group = 0; group < tree.groups(1); ++group) {
             QuantileSelector<float> selector;
-            for (std::uint32_t i = 0; i < 4 * k; ++i) selector.keys.push_back(static_cast<float>((i * 37 + group) % (4 * k)));
+            for (std::uint32_t i = 0; i < 4 * k; ++i)
+                selector.keys.push_back(static_cast<float>((i * 37 + group) % (4 * k)));
             tree.cut(1, group, selector);
         }
         std::uniform_real_distribution<float> value(-3.0F, static_cast<float>(4 * k) + 3.0F);
@@ -122,7 +127,7 @@ TEST(CutTree, SegmentOfMaxIsTheMaxSegmentUpToTwoPastTheMin) {
             float min = value(random);
             float max = value(random);
             if (trial % 7 == 0 && !cuts.empty()) min = cuts[random() % cuts.size()];  // on a plane
-            if (trial % 11 == 0) max = min;                                              // a point
+            if (trial % 11 == 0) max = min;                                           // a point
             if (trial % 13 == 0) max = std::numeric_limits<float>::infinity();
             if (max < min) std::swap(min, max);
             const std::uint32_t lo = segment_of(cuts, min);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // DetectStats: each phase field means one thing in every pipeline, and is zero where the
 // pipeline has no such phase (smb/stats.hpp).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smb::Detector against brute force: seeded scenes of many kinds driven over many steps (motion,
 // jumps, growing and shrinking arrays), the precision it chooses, and what it does with bad
 // input and throwing sinks.
@@ -31,13 +32,13 @@ std::vector<Pair> brute_force(const std::vector<Box<Real, Dim>>& boxes) {
 /// A kind of scene: where the boxes lie and how big they are.
 struct SceneKind {
     std::string name;
-    double centre = 0;        ///< the middle of the space on every axis
-    double side = 1;          ///< typical box side
-    double space = 20;        ///< side of the space the centres lie in
-    double tiny_fraction = 0; ///< share of boxes 1e-6 of `side` wide (points when `points`)
+    double centre = 0;         ///< the middle of the space on every axis
+    double side = 1;           ///< typical box side
+    double space = 20;         ///< side of the space the centres lie in
+    double tiny_fraction = 0;  ///< share of boxes 1e-6 of `side` wide (points when `points`)
     bool points = false;
-    double huge_fraction = 0; ///< share of boxes as wide as the space
-    bool lattice = false;     ///< unit boxes on an integer lattice: every neighbour touches
+    double huge_fraction = 0;  ///< share of boxes as wide as the space
+    bool lattice = false;      ///< unit boxes on an integer lattice: every neighbour touches
 };
 
 std::vector<SceneKind> scene_kinds() {
@@ -323,7 +324,8 @@ TEST(DetectorStats, PaperPipelineLeavesTheLevelsZero) {
     paper.pipeline = Pipeline::paper_lists;
     World3d world(paper);
     for (BoxId id = 0; id < 1000; ++id) {
-        const double x = static_cast<double>(id % 10), y = static_cast<double>(id / 10 % 10), z = static_cast<double>(id / 100);
+        const double x = static_cast<double>(id % 10), y = static_cast<double>(id / 10 % 10),
+                     z = static_cast<double>(id / 100);
         world.insert(id, Box3d{{x, y, z}, {x + 1.5, y + 1.5, z + 1.5}});
     }
     std::vector<Pair> pairs;

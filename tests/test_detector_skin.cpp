@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smb::Detector with a skin (DetectorSettings::skin): the candidate list kept between detections
 // against brute force, over many steps of small motion with jumps, swap-removals, appends, an
 // array that shrinks and grows back, skins from tight to far too wide; and the guarantees the
@@ -63,8 +64,8 @@ protected:
     /// A simulation's life: small motion every step, a few bodies jumping, swap-removed and
     /// appended, and now and then the array cut short and grown back. Returns how many steps
     /// kept the candidates (no rebuild), so that a test can see the kept path ran.
-    std::size_t drive(std::uint64_t seed, const DetectorSettings& settings, double centre, double shift,
-                      int steps = 40, std::size_t n = 700) {
+    std::size_t drive(std::uint64_t seed, const DetectorSettings& settings, double centre, double shift, int steps = 40,
+                      std::size_t n = 700) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed << ", skin " << settings.skin << ", centre " << centre
                                           << ", threads " << settings.threads);
         Random random(seed);
@@ -78,8 +79,7 @@ protected:
             SCOPED_TRACE(::testing::Message() << "step " << step);
             if (step > 0) {
                 move(random, boxes, shift);
-                for (int jump = 0; jump < 3; ++jump)
-                    boxes[random() % boxes.size()] = new_box(random, centre, space);
+                for (int jump = 0; jump < 3; ++jump) boxes[random() % boxes.size()] = new_box(random, centre, space);
                 for (int removal = 0; removal < 4; ++removal) {
                     const std::size_t victim = random() % boxes.size();
                     boxes[victim] = boxes.back();
@@ -314,7 +314,7 @@ TYPED_TEST(DetectorSkinTest, StepsAsideWhileTheBoxesMoveFartherThanTheSkin) {
         // that served no kept detection, then aside. Forty a step: build, keep, rebuild, keep,
         // rebuild (the second short life), then aside.
         const std::vector<bool> expected =
-            jumps < 0     ? std::vector<bool>{true, false, false, false, false, false, false, false}
+            jumps < 0      ? std::vector<bool>{true, false, false, false, false, false, false, false}
             : jumps == 200 ? std::vector<bool>{true, true, true, false, false, false, false, false}
                            : std::vector<bool>{true, true, true, true, true, false, false, false};
         EXPECT_EQ(skinned, expected);

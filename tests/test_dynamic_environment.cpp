@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The paper's artificial dynamic environment: determinism, the λ rule for N, valid boxes inside
 // the cube, E and H at step 0, and the hand-over of steps to a World.
 
@@ -179,16 +180,11 @@ TEST(DynamicEnvironment, RejectsParametersOutOfRange) {
         change(params);
         return params;
     };
-    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.packing_density = 0; })),
-                 std::invalid_argument);
-    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.size_ratio = 0.5; })),
-                 std::invalid_argument);
-    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.update_factor = 1.0; })),
-                 std::invalid_argument);
-    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.update_factor = -0.1; })),
-                 std::invalid_argument);
-    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.cube_side = 0.5; })),
-                 std::invalid_argument);
+    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.packing_density = 0; })), std::invalid_argument);
+    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.size_ratio = 0.5; })), std::invalid_argument);
+    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.update_factor = 1.0; })), std::invalid_argument);
+    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.update_factor = -0.1; })), std::invalid_argument);
+    EXPECT_THROW(DynamicEnvironment<3>(with([](auto& p) { p.cube_side = 0.5; })), std::invalid_argument);
 }
 
 template <typename Real, int Dim>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one-shot entry point: box i has id i, pairs as brute force finds them.
 
 #include <gtest/gtest.h>
@@ -6,8 +7,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <span>
 #include <list>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,8 +37,8 @@ protected:
         });
     }
 
-    static std::vector<BoxT> random_boxes(std::uint64_t seed, std::size_t count, double space,
-                                          double min_side, double max_side) {
+    static std::vector<BoxT> random_boxes(std::uint64_t seed, std::size_t count, double space, double min_side,
+                                          double max_side) {
         Random random(seed);
         std::vector<BoxT> boxes;
         for (std::size_t i = 0; i < count; ++i)
@@ -78,15 +79,13 @@ TYPED_TEST(FindOverlappingPairsTest, IdenticalAndDegenerateBoxes) {
 TYPED_TEST(FindOverlappingPairsTest, OneHugeBoxAmongSmallOnes) {
     auto boxes = this->random_boxes(321, scaled(1000), 100.0, 0.1, 1.0);
     Random random(322);
-    boxes[boxes.size() / 2] =
-        random_box<typename TestFixture::Real, TestFixture::Dim>(random, 50, 50, 80, 80);
+    boxes[boxes.size() / 2] = random_box<typename TestFixture::Real, TestFixture::Dim>(random, 50, 50, 80, 80);
     EXPECT_TRUE(this->finds_like_brute_force(boxes));
 }
 
 TYPED_TEST(FindOverlappingPairsTest, SettingsDoNotChangeTheAnswer) {
     const auto boxes = this->random_boxes(331, scaled(800), 25.0, 0.3, 2.0);
-    for (const std::size_t population : {std::size_t{1}, std::size_t{3}, std::size_t{64},
-                                         std::size_t{100000}}) {
+    for (const std::size_t population : {std::size_t{1}, std::size_t{3}, std::size_t{64}, std::size_t{100000}}) {
         SCOPED_TRACE(::testing::Message() << "target_cell_population " << population);
         WorldSettings settings = test_settings();
         settings.target_cell_population = population;
@@ -98,9 +97,8 @@ TYPED_TEST(FindOverlappingPairsTest, SettingsDoNotChangeTheAnswer) {
 // Every contiguous range of boxes is taken as it is: no explicit std::span<const Box> needed.
 TYPED_TEST(FindOverlappingPairsTest, TakesEveryContiguousRangeOfBoxes) {
     std::vector<typename TestFixture::BoxT> boxes = this->random_boxes(341, 300, 12.0, 0.3, 2.0);
-    const std::vector<Pair> expected =
-        find_overlapping_pairs<typename TestFixture::Real, TestFixture::Dim>(
-            std::span<const typename TestFixture::BoxT>(boxes));
+    const std::vector<Pair> expected = find_overlapping_pairs<typename TestFixture::Real, TestFixture::Dim>(
+        std::span<const typename TestFixture::BoxT>(boxes));
     ASSERT_FALSE(expected.empty());
     const std::vector<typename TestFixture::BoxT>& const_boxes = boxes;
     const std::span<typename TestFixture::BoxT> mutable_span(boxes);

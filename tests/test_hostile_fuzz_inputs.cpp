@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Replays every committed fuzz input through the checks of its libFuzzer target: the seed
 // corpora (fuzz/corpus/<target>/) and the inputs that once broke something
 // (fuzz/regressions/<target>/). A regression stays fixed in every build, not only under clang.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The bounded-memory sort behind `smb pairs`: whatever the memory allowance, the pairs come out
 // exactly sorted, each once, and a large frame spills to temporary files instead of memory.
 
@@ -25,8 +26,7 @@ std::vector<Pair> random_pairs(std::size_t count, std::uint64_t seed) {
     return pairs;
 }
 
-std::vector<Pair> sorted_through(io::SpillingPairSorter& sorter, const std::vector<Pair>& pairs,
-                                 std::size_t chunk) {
+std::vector<Pair> sorted_through(io::SpillingPairSorter& sorter, const std::vector<Pair>& pairs, std::size_t chunk) {
     for (std::size_t first = 0; first < pairs.size(); first += chunk)
         sorter.add(std::span<const Pair>(pairs).subspan(first, std::min(chunk, pairs.size() - first)));
     std::vector<Pair> out;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The id index (src/core/id_index.hpp): small ids in an array, the others in a hash map, checked
 // against std::map under random inserts, moves and erases of dense, sparse and mixed ids.
 
@@ -67,9 +68,7 @@ TEST(IdIndex, SparseIdsAgreeWithAMap) {
 }
 
 TEST(IdIndex, MixedIdsAgreeWithAMap) {
-    churn(3, [](std::mt19937_64& random) {
-        return random() % 4 == 0 ? BoxId{random()} : BoxId{random() % 20000};
-    });
+    churn(3, [](std::mt19937_64& random) { return random() % 4 == 0 ? BoxId{random()} : BoxId{random() % 20000}; });
 }
 
 TEST(IdIndex, IdsJustAboveTheArrayMoveIntoItAsItGrows) {

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Unit tests of the algorithm's internals (src/): they see the private headers.
 foreach(concept shell_sort axial_cut singular_regroup paper_example id_index box_store cut_tree quantile_select cell_pairs)
   if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/test_${concept}.cpp)
@@ -6,5 +7,5 @@ foreach(concept shell_sort axial_cut singular_regroup paper_example id_index box
   endif()
 endforeach()
 
-# Public-API tests of the lead's own (pair limits and streaming).
+# Public-API tests of pair limits and streaming.
 smb_add_gtest(NAME test_pair_limit SOURCES test_pair_limit.cpp)

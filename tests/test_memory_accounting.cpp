@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks World::bytes_held() and DetectStats::bytes_held against the heap bytes the world
 // really holds, measured by replacing the global allocation functions of this test program.
 // Agreement is asked within kRelativeTolerance of the measured bytes plus kSlackBytes.
@@ -98,15 +99,13 @@ protected:
 
     /// Compares the world's own account with the bytes allocated since `baseline` and still
     /// live: everything the test itself holds was allocated before the baseline.
-    static void expect_agreement(const char* when, std::size_t reported, std::int64_t baseline,
-                                 std::size_t boxes) {
+    static void expect_agreement(const char* when, std::size_t reported, std::int64_t baseline, std::size_t boxes) {
         const std::int64_t measured = live_bytes() - baseline;
         const auto claimed = static_cast<std::int64_t>(reported);
         const auto allowed =
-            static_cast<std::int64_t>(kRelativeTolerance * static_cast<double>(measured)) +
-            kSlackBytes;
-        std::printf("%-34s boxes %7zu  measured %10lld B (%6.1f B/box)  reported %10lld B\n",
-                    when, boxes, static_cast<long long>(measured),
+            static_cast<std::int64_t>(kRelativeTolerance * static_cast<double>(measured)) + kSlackBytes;
+        std::printf("%-34s boxes %7zu  measured %10lld B (%6.1f B/box)  reported %10lld B\n", when, boxes,
+                    static_cast<long long>(measured),
                     boxes ? static_cast<double>(measured) / static_cast<double>(boxes) : 0.0,
                     static_cast<long long>(claimed));
         EXPECT_LE(claimed - measured, allowed) << when << ": reports more than it holds";
@@ -124,8 +123,7 @@ protected:
             ids[i] = 3 * i + 1;
             boxes[i] = random_box<Real, Dim>(random, 0, space, 1.0, 2.0);
         }
-        const std::vector<BoxId> half(ids.begin(),
-                                      ids.begin() + static_cast<std::ptrdiff_t>(count / 2));
+        const std::vector<BoxId> half(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(count / 2));
         std::vector<Pair> pairs;
         pairs.reserve(count * 8);
         const auto pairs_bytes = static_cast<std::int64_t>(pairs.capacity() * sizeof(Pair));
@@ -141,8 +139,7 @@ protected:
             ASSERT_LE(pairs.capacity() * sizeof(Pair), static_cast<std::size_t>(pairs_bytes))
                 << "the pair list outgrew its reservation; raise it";
             expect_agreement("after detect (stats)", stats.bytes_held, baseline, world->size());
-            expect_agreement("after detect (bytes_held)", world->bytes_held(), baseline,
-                             world->size());
+            expect_agreement("after detect (bytes_held)", world->bytes_held(), baseline, world->size());
         }
         // Remove half: the world may keep its capacity, but must still account for it.
         world->remove(half);

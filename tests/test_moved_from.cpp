@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A World or Detector that was moved from: empty, holding nothing, with default settings, and
 // usable again. Every call on it is valid.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Writing and reading the pair CSV: exact text, frames without contacts, and the checks of the
 // reader (header, a < b, order).
 
@@ -66,8 +67,7 @@ TEST(PairCsv, ReadsWhatItWrites) {
 }
 
 TEST(PairCsv, ReadsCrlfWithoutFinalNewline) {
-    EXPECT_EQ(read_text("frame,a,b\r\n0,1,2\r\n2,3,4"),
-              (std::vector<FramePair>{{0, 1, 2}, {2, 3, 4}}));
+    EXPECT_EQ(read_text("frame,a,b\r\n0,1,2\r\n2,3,4"), (std::vector<FramePair>{{0, 1, 2}, {2, 3, 4}}));
 }
 
 TEST(PairCsv, ReaderRejectsMalformedFiles) {

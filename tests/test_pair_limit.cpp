@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pair explosions: detect(vector) refuses to hold more than max_pairs_held pairs, detect(sink)
 // streams any number, and a sink that throws leaves the world valid.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // detect(..., std::vector<Pair>&) of World and Detector: on success the vector holds exactly
 // the detection's pairs, whatever it held before; when the call throws (an invalid box, the
 // pair limit) it holds what it held before, element for element.
@@ -84,7 +85,7 @@ TEST(PairVector, DetectorPastThePairLimitOrOnAnInvalidBoxLeavesTheVectorAsItWas)
         EXPECT_LE(pairs.capacity(), 64U) << "the refused pairs' memory is given back";
 
         std::vector<Box3d> boxes = grid_of_touching_boxes(5);  // 72 pairs
-        detector.detect(boxes, pairs);  // cuts (and candidates) to keep
+        detector.detect(boxes, pairs);                         // cuts (and candidates) to keep
         pairs = kOldPairs;
         boxes[17].max[1] = boxes[17].min[1] - 1;
         EXPECT_THROW(detector.detect(boxes, pairs), InvalidBoxError);

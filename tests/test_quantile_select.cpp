@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The quantiles of the axial cut (src/cuts/quantile_select.hpp): the radix sort and the recursive
 // selection must return the key of every rank floor(j n / k) exactly, as a full sort does, for
 // any keys: negatives, signed zeros, long runs of equal keys, the ends of the range.
@@ -37,16 +38,31 @@ std::vector<Real> make_keys(std::size_t n, int shape, std::mt19937_64& random) {
     constexpr Real top = std::numeric_limits<Real>::max();
     std::uniform_real_distribution<Real> wide(-1000, 1000);
     std::normal_distribution<Real> narrow(static_cast<Real>(5e3), static_cast<Real>(1e-2));
-    const Real specials[] = {Real{0}, -Real{0}, top, -top, std::numeric_limits<Real>::denorm_min(),
-                             -std::numeric_limits<Real>::denorm_min(), std::numeric_limits<Real>::infinity(),
-                             -std::numeric_limits<Real>::infinity(), Real{1}, Real{-1}};
+    const Real specials[] = {Real{0},
+                             -Real{0},
+                             top,
+                             -top,
+                             std::numeric_limits<Real>::denorm_min(),
+                             -std::numeric_limits<Real>::denorm_min(),
+                             std::numeric_limits<Real>::infinity(),
+                             -std::numeric_limits<Real>::infinity(),
+                             Real{1},
+                             Real{-1}};
     std::vector<Real> keys(n);
     for (Real& key : keys) {
         switch (shape) {
-        case 0: key = wide(random); break;
-        case 1: key = narrow(random); break;                                // the high bytes all equal
-        case 2: key = static_cast<Real>(random() % 7) - Real{3}; break;     // runs of equal keys
-        default: key = specials[random() % std::size(specials)]; break;   // signed zeros, infinities
+            case 0:
+                key = wide(random);
+                break;
+            case 1:
+                key = narrow(random);
+                break;  // the high bytes all equal
+            case 2:
+                key = static_cast<Real>(random() % 7) - Real{3};
+                break;  // runs of equal keys
+            default:
+                key = specials[random() % std::size(specials)];
+                break;  // signed zeros, infinities
         }
     }
     return keys;
@@ -55,8 +71,8 @@ std::vector<Real> make_keys(std::size_t n, int shape, std::mt19937_64& random) {
 TYPED_TEST(QuantileSelect, EveryQuantileIsTheKeyOfItsRank) {
     using Real = TypeParam;
     std::mt19937_64 random(17);
-    const std::size_t sizes[] = {1, 2, 5, 100, QuantileSelector<Real>::kRadixFrom - 1, QuantileSelector<Real>::kRadixFrom,
-                                 5000, 40000};
+    const std::size_t sizes[] = {
+        1, 2, 5, 100, QuantileSelector<Real>::kRadixFrom - 1, QuantileSelector<Real>::kRadixFrom, 5000, 40000};
     QuantileSelector<Real> selector;  // one selector throughout: its buffers are reused
     for (const std::size_t n : sizes) {
         for (int shape = 0; shape < 4; ++shape) {
@@ -72,9 +88,9 @@ TYPED_TEST(QuantileSelect, EveryQuantileIsTheKeyOfItsRank) {
                     if (way == 2) selector.select_by_radix_sort(segments, out.data());
                     for (std::size_t j = 0; j < expected.size(); ++j) {
                         // == : a signed zero may come back as either zero, which are the same plane.
-                        ASSERT_TRUE(out[j] == expected[j]) << "way " << way << ", n " << n << ", shape " << shape
-                                                           << ", segments " << segments << ", quantile " << j + 1
-                                                           << ": " << out[j] << " against " << expected[j];
+                        ASSERT_TRUE(out[j] == expected[j])
+                            << "way " << way << ", n " << n << ", shape " << shape << ", segments " << segments
+                            << ", quantile " << j + 1 << ": " << out[j] << " against " << expected[j];
                     }
                     ASSERT_TRUE(std::is_sorted(out.begin(), out.end()));
                 }

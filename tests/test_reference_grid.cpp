@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The grid pair finder used by `smb run` as its independent reference, checked pair for pair
 // against the O(n^2) brute force on random and awkward scenes.
 
@@ -77,8 +78,7 @@ TEST(ReferenceGrid, TouchingBoxesOnALatticeOverlap) {
     Scene<double, 3> scene;
     for (int x = 0; x < 6; ++x)
         for (int y = 0; y < 6; ++y)
-            for (int z = 0; z < 6; ++z)
-                scene.add({{double(x), double(y), double(z)}, {x + 1.0, y + 1.0, z + 1.0}});
+            for (int z = 0; z < 6; ++z) scene.add({{double(x), double(y), double(z)}, {x + 1.0, y + 1.0, z + 1.0}});
     expect_matches_brute_force(scene);
     // Pairs at Chebyshev distance 1 on a 6^3 lattice: ((6 + 5 + 5)^3 - 6^3) / 2.
     EXPECT_EQ((grid_pairs<double, 3>(scene.ids, scene.boxes).size()), 1940u);
@@ -96,8 +96,7 @@ TEST(ReferenceGrid, PointBoxesAndZeroExtents) {
     std::uniform_int_distribution<int> coordinate(0, 9);
     Scene<double, 3> scene;
     for (int i = 0; i < 400; ++i) {
-        const Box<double, 3> point{{double(coordinate(rng)), double(coordinate(rng)), 0.0},
-                                   {0, 0, 0}};
+        const Box<double, 3> point{{double(coordinate(rng)), double(coordinate(rng)), 0.0}, {0, 0, 0}};
         scene.add({point.min, point.min});
     }
     expect_matches_brute_force(scene);

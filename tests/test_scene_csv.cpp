@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reading and writing the scene CSV: both dimensions, tolerated variations (CRLF, no final
 // newline, spaces, BOM), exact doubles, frame numbering, and every malformed case with its line.
 
@@ -42,11 +43,9 @@ void expect_error(const std::string& text, std::uint64_t line, const std::string
         SceneFrame<3> frame3;
         SceneFrame<2> frame2;
         if (reader.dimension() == 3) {
-            while (reader.read_frame(frame3)) {
-            }
+            while (reader.read_frame(frame3)) {}
         } else {
-            while (reader.read_frame(frame2)) {
-            }
+            while (reader.read_frame(frame2)) {}
         }
         ADD_FAILURE() << "no error thrown";
     } catch (const CsvError& error) {
@@ -79,8 +78,7 @@ TEST(SceneCsv, Reads2d) {
 }
 
 TEST(SceneCsv, AcceptsCrlfAndNoFinalNewline) {
-    const auto frames = read_all<2>(
-        "frame,id,xmin,ymin,xmax,ymax\r\n0,1,0,0,1,1\r\n0,2,0.5,0.5,2,2\r\n1,1,0,0,1,1.25");
+    const auto frames = read_all<2>("frame,id,xmin,ymin,xmax,ymax\r\n0,1,0,0,1,1\r\n0,2,0.5,0.5,2,2\r\n1,1,0,0,1,1.25");
     ASSERT_EQ(frames.size(), 2u);
     EXPECT_EQ(frames[0].ids.size(), 2u);
     EXPECT_EQ(frames[1].boxes[0].max[1], 1.25);
@@ -100,8 +98,7 @@ TEST(SceneCsv, HeaderOnlyIsAnEmptyScene) {
 }
 
 TEST(SceneCsv, SkippedFrameNumbersAreNotReturned) {
-    const auto frames =
-        read_all<2>(std::string(header_2d) + "0,1,0,0,1,1\n3,1,0,0,1,1\n3,2,0,0,1,1\n");
+    const auto frames = read_all<2>(std::string(header_2d) + "0,1,0,0,1,1\n3,1,0,0,1,1\n3,2,0,0,1,1\n");
     ASSERT_EQ(frames.size(), 2u);
     EXPECT_EQ(frames[0].number, 0u);
     EXPECT_EQ(frames[1].number, 3u);
@@ -118,21 +115,19 @@ TEST(SceneCsv, NegativeZeroEqualsZero) {
 }
 
 TEST(SceneCsv, ParsesToTheNearestDouble) {
-    const std::vector<std::string> texts = {
-        "0.1",
-        "0.30000000000000001665",
-        "2.2250738585072011e-308",
-        "4.9e-324",
-        "1e-400",
-        "1.7976931348623157e308",
-        "123456789012345678901234567890",
-        "+2.5",
-        "-7e-3",
-        "9007199254740993",
-        "0.1000000000000000055511151231257827021181583404541015625"};
+    const std::vector<std::string> texts = {"0.1",
+                                            "0.30000000000000001665",
+                                            "2.2250738585072011e-308",
+                                            "4.9e-324",
+                                            "1e-400",
+                                            "1.7976931348623157e308",
+                                            "123456789012345678901234567890",
+                                            "+2.5",
+                                            "-7e-3",
+                                            "9007199254740993",
+                                            "0.1000000000000000055511151231257827021181583404541015625"};
     for (const auto& text : texts) {
-        const auto frames =
-            read_all<2>(std::string(header_2d) + "0,1," + text + ",0," + text + ",0\n");
+        const auto frames = read_all<2>(std::string(header_2d) + "0,1," + text + ",0," + text + ",0\n");
         ASSERT_EQ(frames.size(), 1u) << text;
         EXPECT_EQ(std::bit_cast<std::uint64_t>(frames[0].boxes[0].min[0]),
                   std::bit_cast<std::uint64_t>(std::strtod(text.c_str(), nullptr)))
@@ -175,8 +170,8 @@ TEST(SceneCsv, WriterRoundTripsEveryDoubleExactly) {
     EXPECT_EQ(frames[1].number, 7u);
     ASSERT_EQ(frames[0].ids.size(), ids.size());
     for (std::size_t row = 0; row < frames[0].ids.size(); ++row) {
-        const auto original = static_cast<std::size_t>(
-            std::find(ids.begin(), ids.end(), frames[0].ids[row]) - ids.begin());
+        const auto original =
+            static_cast<std::size_t>(std::find(ids.begin(), ids.end(), frames[0].ids[row]) - ids.begin());
         for (int k = 0; k < 3; ++k) {
             ASSERT_EQ(std::bit_cast<std::uint64_t>(frames[0].boxes[row].min[k]),
                       std::bit_cast<std::uint64_t>(boxes[original].min[k]));
@@ -200,8 +195,7 @@ TEST(SceneCsvErrors, UnknownHeader) {
 }
 
 TEST(SceneCsvErrors, WrongColumnCount) {
-    expect_error(std::string(header_3d) + "0,1,0,0,0,1,1,1\n0,2,0,0,0,1,1\n", 3,
-                 "expected 8 fields, found 7");
+    expect_error(std::string(header_3d) + "0,1,0,0,0,1,1,1\n0,2,0,0,0,1,1\n", 3, "expected 8 fields, found 7");
     expect_error(std::string(header_2d) + "0,1,0,0,1,1,1\n", 2, "expected 6 fields, found 7");
 }
 
@@ -210,14 +204,12 @@ TEST(SceneCsvErrors, TextInANumber) {
     expect_error(std::string(header_2d) + "0,1,0,1.5x,1,1\n", 2, "is not a number");
     expect_error(std::string(header_2d) + "0,1,0,+-1,1,1\n", 2, "is not a number");
     expect_error(std::string(header_2d) + "0,1,0,,1,1\n", 2, "empty ymin");
-    expect_error(std::string(header_2d) + "0,x1,0,0,1,1\n", 2,
-                 "id 'x1' is not an unsigned integer");
+    expect_error(std::string(header_2d) + "0,x1,0,0,1,1\n", 2, "id 'x1' is not an unsigned integer");
     expect_error(std::string(header_2d) + "0.5,1,0,0,1,1\n", 2, "frame '0.5'");
 }
 
 TEST(SceneCsvErrors, NanAndInfinity) {
-    expect_error(std::string(header_2d) + "0,1,0,0,1,1\n0,2,nan,0,1,1\n", 3,
-                 "xmin 'nan' is not finite");
+    expect_error(std::string(header_2d) + "0,1,0,0,1,1\n0,2,nan,0,1,1\n", 3, "xmin 'nan' is not finite");
     expect_error(std::string(header_2d) + "0,1,0,0,inf,1\n", 2, "is not finite");
     expect_error(std::string(header_2d) + "0,1,-infinity,0,1,1\n", 2, "is not finite");
     expect_error(std::string(header_2d) + "0,1,0,0,1e400,1\n", 2, "too large");
@@ -233,8 +225,7 @@ TEST(SceneCsvErrors, DuplicateIdInAFrame) {
 }
 
 TEST(SceneCsvErrors, FramesOutOfOrder) {
-    expect_error(std::string(header_2d) + "0,1,0,0,1,1\n2,1,0,0,1,1\n1,1,0,0,1,1\n", 4,
-                 "frame 1 comes after frame 2");
+    expect_error(std::string(header_2d) + "0,1,0,0,1,1\n2,1,0,0,1,1\n1,1,0,0,1,1\n", 4, "frame 1 comes after frame 2");
 }
 
 TEST(SceneCsvErrors, NegativeFrameAndId) {
@@ -243,13 +234,11 @@ TEST(SceneCsvErrors, NegativeFrameAndId) {
 }
 
 TEST(SceneCsvErrors, IdOverflow) {
-    expect_error(std::string(header_2d) + "0,18446744073709551616,0,0,1,1\n", 2,
-                 "does not fit in 64 bits");
+    expect_error(std::string(header_2d) + "0,18446744073709551616,0,0,1,1\n", 2, "does not fit in 64 bits");
 }
 
 TEST(SceneCsvErrors, LineNumbersCountCrlfLinesAndBlankLines) {
-    expect_error("frame,id,xmin,ymin,xmax,ymax\r\n0,1,0,0,1,1\r\n\r\n0,2,0,0,1\r\n", 4,
-                 "expected 6");
+    expect_error("frame,id,xmin,ymin,xmax,ymax\r\n0,1,0,0,1,1\r\n\r\n0,2,0,0,1\r\n", 4, "expected 6");
 }
 
 }  // namespace

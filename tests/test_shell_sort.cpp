@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The diminishing increment sort (src/paper/shell_sort.hpp) and its adaptive increment rule.
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The singular-item regrouping (src/paper/singular_regroup.hpp) on random lists: every item lands in
 // its parent's section, normal items keep their order, arrivals come in sorted.
 
@@ -31,7 +32,8 @@ TEST(SingularRegroup, RandomSectionsAndArrivals) {
             old_begin.push_back(static_cast<std::uint32_t>(list.size()));
         }
         std::vector<AxisEntry<double>> arrivals;
-        for (Item item = static_cast<Item>(2 * parents); item < 2 * (parents + 20); ++item) arrivals.push_back({key(rng), item});
+        for (Item item = static_cast<Item>(2 * parents); item < 2 * (parents + 20); ++item)
+            arrivals.push_back({key(rng), item});
         std::vector<std::uint32_t> counts(new_sections + 1, 0);
         for (const auto& e : list) ++counts[parent_segment[e.item >> 1] + 1];
         for (const auto& e : arrivals) ++counts[parent_segment[e.item >> 1] + 1];
@@ -53,10 +55,13 @@ TEST(SingularRegroup, RandomSectionsAndArrivals) {
             std::vector<AxisEntry<double>> moved;
             for (std::uint32_t i = counts[j]; i < counts[j + 1]; ++i) {
                 ASSERT_EQ(parent_segment[out[i].item >> 1], j) << "seed " << seed;
-                const bool was_here = j < old_sections &&
-                    std::any_of(list.begin() + old_begin[j], list.begin() + old_begin[j + 1],
-                                [&](const auto& e) { return e.item == out[i].item; });
-                if (was_here) normal_got.push_back(out[i].item); else moved.push_back(out[i]);
+                const bool was_here =
+                    j < old_sections && std::any_of(list.begin() + old_begin[j], list.begin() + old_begin[j + 1],
+                                                    [&](const auto& e) { return e.item == out[i].item; });
+                if (was_here)
+                    normal_got.push_back(out[i].item);
+                else
+                    moved.push_back(out[i]);
             }
             EXPECT_EQ(normal_got, normal_expected) << "seed " << seed << " section " << j;
             EXPECT_TRUE(std::is_sorted(moved.begin(), moved.end(), entry_less<double>)) << "seed " << seed;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenes that are easy to get wrong: empty and single-box worlds, identical, touching and
 // degenerate boxes, coplanar and collinear scenes, extreme sizes and coordinates, a floor
 // under a pile of grains, mass jumps, and the life cycle calls (reinsert, clear, refill).
@@ -226,10 +227,9 @@ TYPED_TEST(WorldEdgeCaseTest, GridOfExactlyTouchingBoxes) {
     const auto pairs = this->check("touching grid");
     // Each cell touches its 3^Dim - 1 neighbours: count the interior-inclusive total exactly.
     const std::size_t s = static_cast<std::size_t>(side);
-    const std::size_t expected = TestFixture::Dim == 2
-                                     ? 2 * s * (s - 1) + 2 * (s - 1) * (s - 1)
-                                     : 3 * s * s * (s - 1) + 6 * s * (s - 1) * (s - 1) +
-                                           4 * (s - 1) * (s - 1) * (s - 1);
+    const std::size_t expected =
+        TestFixture::Dim == 2 ? 2 * s * (s - 1) + 2 * (s - 1) * (s - 1)
+                              : 3 * s * s * (s - 1) + 6 * s * (s - 1) * (s - 1) + 4 * (s - 1) * (s - 1) * (s - 1);
     EXPECT_EQ(pairs.size(), expected);
     // Shrink every box by a hair: nothing touches any more.
     for (std::size_t i = 0; i < boxes.size(); ++i) {
@@ -290,8 +290,8 @@ TYPED_TEST(WorldEdgeCaseTest, FewDistinctCoordinateValues) {
     for (const std::size_t population : {std::size_t{1}, std::size_t{2}, std::size_t{24}}) {
         for (const std::size_t count : {std::size_t{6}, std::size_t{20}, std::size_t{60}, scaled(250)}) {
             for (std::uint64_t seed = 1; seed <= 12; ++seed) {
-                SCOPED_TRACE(::testing::Message() << "population " << population << ", count "
-                                                  << count << ", seed " << seed);
+                SCOPED_TRACE(::testing::Message()
+                             << "population " << population << ", count " << count << ", seed " << seed);
                 Random random(seed);
                 const std::size_t values = 2 + seed % 3;
                 const auto draw = [&random, values] {
@@ -381,8 +381,8 @@ TYPED_TEST(WorldEdgeCaseTest, FloorUnderAPileOfGrains) {
     const std::size_t grains = scaled(20000);
     // Grains on a jittered lattice above a floor that spans the whole pile; each step they
     // fall and the ones that reach the floor rest on it exactly, as in a settling simulation.
-    const auto per_row = static_cast<std::size_t>(
-        std::ceil(std::pow(static_cast<double>(grains) / 10.0, 1.0 / (dims - 1))));
+    const auto per_row =
+        static_cast<std::size_t>(std::ceil(std::pow(static_cast<double>(grains) / 10.0, 1.0 / (dims - 1))));
     Random random(1501);
     std::vector<BoxId> ids;
     std::vector<typename TestFixture::BoxT> boxes;
@@ -484,9 +484,15 @@ TYPED_TEST(WorldEdgeCaseTest, GapsAndOverlapsBelowFloatPrecision) {
             using Coord = typename TestFixture::Real;
             const Coord end = left.max[0];
             switch (row % 3) {
-                case 0: right.min[0] = std::nextafter(end, -std::numeric_limits<Coord>::infinity()); break;
-                case 1: right.min[0] = end; break;
-                default: right.min[0] = std::nextafter(end, std::numeric_limits<Coord>::infinity()); break;
+                case 0:
+                    right.min[0] = std::nextafter(end, -std::numeric_limits<Coord>::infinity());
+                    break;
+                case 1:
+                    right.min[0] = end;
+                    break;
+                default:
+                    right.min[0] = std::nextafter(end, std::numeric_limits<Coord>::infinity());
+                    break;
             }
             right.max[0] = std::max(right.min[0], static_cast<Coord>(end + std::abs(static_cast<double>(end)) * 1e-4));
             this->insert(id++, left);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bad input: invalid boxes, unknown and duplicate ids, mismatched spans. Every rejected call
 // must throw the type errors.hpp names, mention the id at fault, and leave the world exactly
 // as it was: same boxes, and the same pairs at the next detection as a twin world that never
@@ -86,9 +87,8 @@ protected:
             out.push_back({"-inf min " + axis, [k](BoxT& b) { b.min[k] = -inf; }});
             out.push_back({"-inf min and max " + axis, [k](BoxT& b) { b.min[k] = b.max[k] = -inf; }});
             out.push_back({"min > max " + axis, [k](BoxT& b) { b.min[k] = b.max[k] + Real(1); }});
-            out.push_back({"min just above max " + axis, [k](BoxT& b) {
-                               b.min[k] = std::nextafter(b.max[k], std::numeric_limits<Real>::max());
-                           }});
+            out.push_back({"min just above max " + axis,
+                           [k](BoxT& b) { b.min[k] = std::nextafter(b.max[k], std::numeric_limits<Real>::max()); }});
         }
         return out;
     }
@@ -178,8 +178,7 @@ TYPED_TEST(WorldErrorTest, InsertOfAnInvalidBox) {
     for (const auto& corruption : this->corruptions()) {
         const auto bad = this->corrupted(corruption);
         this->template expect_rejected<InvalidBoxError>(
-            "insert, " + corruption.name, [&](TypeParam& w) { w.insert(kBadId, bad); },
-            std::to_string(kBadId));
+            "insert, " + corruption.name, [&](TypeParam& w) { w.insert(kBadId, bad); }, std::to_string(kBadId));
     }
 }
 
@@ -189,8 +188,7 @@ TYPED_TEST(WorldErrorTest, BatchInsertWithOneInvalidBox) {
     for (const auto& corruption : this->corruptions()) {
         this->batch_with(this->corrupted(corruption), ids, boxes);
         this->template expect_rejected<InvalidBoxError>(
-            "batch insert, " + corruption.name, [&](TypeParam& w) { w.insert(ids, boxes); },
-            std::to_string(kBadId));
+            "batch insert, " + corruption.name, [&](TypeParam& w) { w.insert(ids, boxes); }, std::to_string(kBadId));
         for (const BoxId id : ids) EXPECT_FALSE(this->world_.contains(id));
     }
 }
@@ -200,8 +198,7 @@ TYPED_TEST(WorldErrorTest, UpdateToAnInvalidBox) {
         const BoxId id = this->some_present_id();
         const auto bad = this->corrupted(corruption);
         this->template expect_rejected<InvalidBoxError>(
-            "update, " + corruption.name, [&](TypeParam& w) { w.update(id, bad); },
-            std::to_string(id));
+            "update, " + corruption.name, [&](TypeParam& w) { w.update(id, bad); }, std::to_string(id));
     }
 }
 
@@ -216,8 +213,7 @@ TYPED_TEST(WorldErrorTest, BatchUpdateWithOneInvalidBox) {
         boxes.push_back(this->random_valid_box());
         const BoxId culprit = ids[ids.size() - 2];
         this->template expect_rejected<InvalidBoxError>(
-            "batch update, " + corruption.name, [&](TypeParam& w) { w.update(ids, boxes); },
-            std::to_string(culprit));
+            "batch update, " + corruption.name, [&](TypeParam& w) { w.update(ids, boxes); }, std::to_string(culprit));
     }
 }
 
@@ -234,15 +230,13 @@ TYPED_TEST(WorldErrorTest, AssignWithOneInvalidBox) {
 TYPED_TEST(WorldErrorTest, InsertOfAnIdAlreadyPresent) {
     const BoxId id = this->some_present_id();
     this->template expect_rejected<DuplicateIdError>(
-        "insert of a present id",
-        [&](TypeParam& w) { w.insert(id, this->random_valid_box()); }, std::to_string(id));
+        "insert of a present id", [&](TypeParam& w) { w.insert(id, this->random_valid_box()); }, std::to_string(id));
 }
 
 TYPED_TEST(WorldErrorTest, InsertOfAnIdInsertedSinceTheLastDetection) {
     this->apply_insert(kBadId + 1, this->random_valid_box());
     this->template expect_rejected<DuplicateIdError>(
-        "insert of a pending id",
-        [&](TypeParam& w) { w.insert(kBadId + 1, this->random_valid_box()); },
+        "insert of a pending id", [&](TypeParam& w) { w.insert(kBadId + 1, this->random_valid_box()); },
         std::to_string(kBadId + 1));
 }
 
@@ -253,8 +247,7 @@ TYPED_TEST(WorldErrorTest, BatchInsertWithAnIdAlreadyPresent) {
     const BoxId present = this->some_present_id();
     ids.back() = present;
     this->template expect_rejected<DuplicateIdError>(
-        "batch insert against the world", [&](TypeParam& w) { w.insert(ids, boxes); },
-        std::to_string(present));
+        "batch insert against the world", [&](TypeParam& w) { w.insert(ids, boxes); }, std::to_string(present));
     for (std::size_t i = 0; i + 1 < ids.size(); ++i) EXPECT_FALSE(this->world_.contains(ids[i]));
 }
 
@@ -265,8 +258,7 @@ TYPED_TEST(WorldErrorTest, BatchInsertNamingAnIdTwice) {
     ids.push_back(kBadId);
     boxes.push_back(this->random_valid_box());
     this->template expect_rejected<DuplicateIdError>(
-        "batch insert with an id twice", [&](TypeParam& w) { w.insert(ids, boxes); },
-        std::to_string(kBadId));
+        "batch insert with an id twice", [&](TypeParam& w) { w.insert(ids, boxes); }, std::to_string(kBadId));
 }
 
 // The message says which of the two an insert's duplicate is: named twice in the batch, or
@@ -306,8 +298,7 @@ TYPED_TEST(WorldErrorTest, BatchRemoveWithOneUnknownId) {
     ids.resize(10);
     ids.push_back(kBadId);
     this->template expect_rejected<UnknownIdError>(
-        "batch remove, unknown id last", [&](TypeParam& w) { w.remove(ids); },
-        std::to_string(kBadId));
+        "batch remove, unknown id last", [&](TypeParam& w) { w.remove(ids); }, std::to_string(kBadId));
     for (std::size_t i = 0; i + 1 < ids.size(); ++i) EXPECT_TRUE(this->world_.contains(ids[i]));
 }
 
@@ -317,14 +308,12 @@ TYPED_TEST(WorldErrorTest, BatchRemoveNamingAnIdTwice) {
     const BoxId twice = ids[4];
     ids.push_back(twice);
     this->template expect_rejected<DuplicateIdError>(
-        "batch remove with an id twice", [&](TypeParam& w) { w.remove(ids); },
-        std::to_string(twice));
+        "batch remove with an id twice", [&](TypeParam& w) { w.remove(ids); }, std::to_string(twice));
 }
 
 TYPED_TEST(WorldErrorTest, UpdateOfAnUnknownId) {
     this->template expect_rejected<UnknownIdError>(
-        "update", [&](TypeParam& w) { w.update(kBadId, this->random_valid_box()); },
-        std::to_string(kBadId));
+        "update", [&](TypeParam& w) { w.update(kBadId, this->random_valid_box()); }, std::to_string(kBadId));
 }
 
 TYPED_TEST(WorldErrorTest, UpdateOfAnIdRemovedSinceTheLastDetection) {
@@ -333,8 +322,7 @@ TYPED_TEST(WorldErrorTest, UpdateOfAnIdRemovedSinceTheLastDetection) {
     this->twin_.remove(id);
     this->reference_.remove(id);
     this->template expect_rejected<UnknownIdError>(
-        "update after remove", [&](TypeParam& w) { w.update(id, this->random_valid_box()); },
-        std::to_string(id));
+        "update after remove", [&](TypeParam& w) { w.update(id, this->random_valid_box()); }, std::to_string(id));
 }
 
 TYPED_TEST(WorldErrorTest, BatchUpdateWithOneUnknownId) {
@@ -344,8 +332,7 @@ TYPED_TEST(WorldErrorTest, BatchUpdateWithOneUnknownId) {
     ids.push_back(kBadId);
     boxes.push_back(this->random_valid_box());
     this->template expect_rejected<UnknownIdError>(
-        "batch update, unknown id last", [&](TypeParam& w) { w.update(ids, boxes); },
-        std::to_string(kBadId));
+        "batch update, unknown id last", [&](TypeParam& w) { w.update(ids, boxes); }, std::to_string(kBadId));
 }
 
 TYPED_TEST(WorldErrorTest, MismatchedSpanLengths) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The world against brute force on eight families of scenes that stress different parts of the
 // cut (ties on an integer lattice, sizes over six orders of magnitude, clusters, coordinates
 // near ±1e9, tiny offsets at 1e9, long sticks, very dense piles), with heavy churn: boxes
@@ -31,14 +32,38 @@ public:
             double centre = 0;
             double side = 0;
             switch (family) {
-                case 0: centre = unit() * scale; side = unit() * 2; break;
-                case 1: centre = std::floor(unit() * 6); side = std::floor(unit() * 3); break;
-                case 2: centre = unit() * scale; side = std::pow(10.0, -3 + 6 * unit()); break;
-                case 3: centre = std::floor(unit() * 4) * scale / 4 + unit() * 2; side = unit() * 0.5; break;
-                case 4: centre = (unit() * 2 - 1) * 1e9; side = unit() < 0.5 ? 0 : unit() * 1e8; break;
-                case 5: centre = 1e9 + std::floor(unit() * 20) * 0.25; side = std::floor(unit() * 3) * 0.25; break;
-                case 6: centre = unit() * scale; side = (k == 0 ? scale : 0.3) * unit(); break;
-                default: centre = unit() * 3; side = unit() * 3; break;
+                case 0:
+                    centre = unit() * scale;
+                    side = unit() * 2;
+                    break;
+                case 1:
+                    centre = std::floor(unit() * 6);
+                    side = std::floor(unit() * 3);
+                    break;
+                case 2:
+                    centre = unit() * scale;
+                    side = std::pow(10.0, -3 + 6 * unit());
+                    break;
+                case 3:
+                    centre = std::floor(unit() * 4) * scale / 4 + unit() * 2;
+                    side = unit() * 0.5;
+                    break;
+                case 4:
+                    centre = (unit() * 2 - 1) * 1e9;
+                    side = unit() < 0.5 ? 0 : unit() * 1e8;
+                    break;
+                case 5:
+                    centre = 1e9 + std::floor(unit() * 20) * 0.25;
+                    side = std::floor(unit() * 3) * 0.25;
+                    break;
+                case 6:
+                    centre = unit() * scale;
+                    side = (k == 0 ? scale : 0.3) * unit();
+                    break;
+                default:
+                    centre = unit() * 3;
+                    side = unit() * 3;
+                    break;
             }
             b.min[k] = static_cast<Real>(centre);
             b.max[k] = std::max(b.min[k], static_cast<Real>(centre + side));

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a World of double boxes holds for its persistent-cut pipeline (floats where they resolve
 // the scene, the doubles where they would not), and that the pairs the floats cannot settle are
 // settled on the stored doubles: under ids that are not the store's slots, after removals that
@@ -88,7 +89,8 @@ TEST(WorldPrecision, SettlesOnTheStoredDoublesAfterRemovalsRenumberTheSlots) {
         std::vector<BoxId> gone;
         Scene kept;
         for (std::size_t i = 0; i < scene.ids.size(); ++i) {
-            if (uniform_index(random, 5) == 0) gone.push_back(scene.ids[i]);
+            if (uniform_index(random, 5) == 0)
+                gone.push_back(scene.ids[i]);
             else {
                 kept.ids.push_back(scene.ids[i]);
                 kept.boxes.push_back(scene.boxes[i]);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Seeded random scenes driven incrementally over dozens of steps (motion, deformation,
 // insertion, deletion, through single calls, batch calls and assign), every detection
 // compared pair for pair with brute force.
@@ -24,11 +25,11 @@ struct Regime {
     double min_side = 1.0;
     double max_side = 2.0;
     double density = 0.3;
-    double large_fraction = 0.0;     ///< share of boxes with a side of large_side_ratio * space
+    double large_fraction = 0.0;  ///< share of boxes with a side of large_side_ratio * space
     double large_side_ratio = 0.0;
-    double motion = 1e-3;            ///< the paper's update factor: shift up to motion * space
-    double churn = 0.02;             ///< share of boxes removed and inserted each step
-    double jump_chance = 0.002;      ///< per box and step: teleport anywhere in the space
+    double motion = 1e-3;        ///< the paper's update factor: shift up to motion * space
+    double churn = 0.02;         ///< share of boxes removed and inserted each step
+    double jump_chance = 0.002;  ///< per box and step: teleport anywhere in the space
     int steps = 30;
 };
 
@@ -41,14 +42,11 @@ protected:
 
     /// Runs one regime from one seed; returns a fingerprint of every detection's raw output
     /// (its pairs in reported order), so that determinism can be checked by running twice.
-    std::uint64_t run(const Regime& regime, std::uint64_t seed,
-                      const WorldSettings& settings = test_settings()) {
+    std::uint64_t run(const Regime& regime, std::uint64_t seed, const WorldSettings& settings = test_settings()) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
         Random random(seed);
         const double mean_side = 0.5 * (regime.min_side + regime.max_side);
-        space_ = std::pow(static_cast<double>(regime.count) * std::pow(mean_side, Dim) /
-                              regime.density,
-                          1.0 / Dim);
+        space_ = std::pow(static_cast<double>(regime.count) * std::pow(mean_side, Dim) / regime.density, 1.0 / Dim);
         regime_ = regime;
 
         World<Real, Dim> world(settings);
@@ -103,8 +101,7 @@ private:
 
     /// One step of the scene. The way each change reaches the world varies with the step, so
     /// that every entry point is used with pending changes of every other kind.
-    void advance(Random& random, int step, World<Real, Dim>& world,
-                 ReferenceWorld<Real, Dim>& reference) {
+    void advance(Random& random, int step, World<Real, Dim>& world, ReferenceWorld<Real, Dim>& reference) {
         if (step % 10 == 5) {
             assign_all(random, world, reference);
             return;
@@ -115,8 +112,7 @@ private:
         if (step % 7 == 3) reinsert_some(random, world, reference);
     }
 
-    void move_boxes(Random& random, int step, World<Real, Dim>& world,
-                    ReferenceWorld<Real, Dim>& reference) {
+    void move_boxes(Random& random, int step, World<Real, Dim>& world, ReferenceWorld<Real, Dim>& reference) {
         // Every box moves on most steps; on every third step only about half do.
         const double share = step % 3 == 2 ? 0.5 : 1.0;
         std::vector<BoxId> ids;
@@ -139,8 +135,7 @@ private:
         return static_cast<std::size_t>(uniform(random, 0.0, 2.0 * expected) + 0.5);
     }
 
-    void remove_some(Random& random, int step, World<Real, Dim>& world,
-                     ReferenceWorld<Real, Dim>& reference) {
+    void remove_some(Random& random, int step, World<Real, Dim>& world, ReferenceWorld<Real, Dim>& reference) {
         std::vector<BoxId> present = reference.ids();
         std::vector<BoxId> doomed;
         const std::size_t count = std::min(churn_count(random), present.size());
@@ -157,11 +152,9 @@ private:
         for (const BoxId id : doomed) reference.remove(id);
     }
 
-    void insert_some(Random& random, int step, World<Real, Dim>& world,
-                     ReferenceWorld<Real, Dim>& reference) {
+    void insert_some(Random& random, int step, World<Real, Dim>& world, ReferenceWorld<Real, Dim>& reference) {
         // Grow back towards the regime's count, with some noise either way.
-        const std::size_t deficit =
-            reference.size() < regime_.count ? regime_.count - reference.size() : 0;
+        const std::size_t deficit = reference.size() < regime_.count ? regime_.count - reference.size() : 0;
         const std::size_t count = deficit / 2 + churn_count(random);
         std::vector<BoxId> ids;
         std::vector<BoxT> boxes;
@@ -179,8 +172,7 @@ private:
 
     /// Removes a few boxes and inserts them again under the same id before the next
     /// detection: half at the same place, half elsewhere.
-    void reinsert_some(Random& random, World<Real, Dim>& world,
-                       ReferenceWorld<Real, Dim>& reference) {
+    void reinsert_some(Random& random, World<Real, Dim>& world, ReferenceWorld<Real, Dim>& reference) {
         const std::vector<BoxId> present = reference.ids();
         if (present.empty()) return;
         for (int i = 0; i < 4; ++i) {
@@ -296,8 +288,7 @@ TYPED_TEST(WorldRandomTest, SmallAndLargeCellPopulations) {
     regime.large_fraction = 0.01;
     regime.large_side_ratio = 0.5;
     regime.steps = 15;
-    for (const std::size_t population : {std::size_t{1}, std::size_t{2}, std::size_t{7},
-                                         std::size_t{10000}}) {
+    for (const std::size_t population : {std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{10000}}) {
         SCOPED_TRACE(::testing::Message() << "target_cell_population " << population);
         WorldSettings settings = test_settings();
         settings.target_cell_population = population;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "smb/workload/reference_grid.hpp"
 
 #include <algorithm>
@@ -34,8 +35,7 @@ public:
         CellCoords last{};
     };
 
-    GridPairFinder(std::span<const BoxId> ids, std::span<const box_type> boxes)
-        : ids_(ids), boxes_(boxes) {}
+    GridPairFinder(std::span<const BoxId> ids, std::span<const box_type> boxes) : ids_(ids), boxes_(boxes) {}
 
     std::vector<Pair> run() {
         split_by_size();
@@ -54,8 +54,7 @@ private:
     static double extent_of(const box_type& box) {
         double extent = 0;
         for (int k = 0; k < Dim; ++k)
-            extent =
-                std::max(extent, static_cast<double>(box.max[k]) - static_cast<double>(box.min[k]));
+            extent = std::max(extent, static_cast<double>(box.max[k]) - static_cast<double>(box.min[k]));
         return extent;
     }
 
@@ -65,8 +64,7 @@ private:
         for (std::size_t i = 0; i < n; ++i) extents[i] = extent_of(boxes_[i]);
         std::vector<double> sorted = extents;
         const auto rank = static_cast<std::size_t>(big_box_percentile * static_cast<double>(n - 1));
-        std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(rank),
-                         sorted.end());
+        std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(rank), sorted.end());
         const double threshold = big_box_factor * sorted[rank];
         for (std::size_t i = 0; i < n; ++i) {
             if (extents[i] > threshold) {
@@ -92,8 +90,7 @@ private:
         for (int k = 0; k < Dim; ++k) widest = std::max(widest, high[k] - low_[k]);
 
         cell_size_ = largest_small_extent_;
-        if (!(cell_size_ > 0))
-            cell_size_ = widest > 0 ? widest / static_cast<double>(small_.size()) : 1.0;
+        if (!(cell_size_ > 0)) cell_size_ = widest > 0 ? widest / static_cast<double>(small_.size()) : 1.0;
         // Tiny boxes spread over a huge space would ask for far more cells than boxes: coarsen.
         const double cell_limit = 2.0 * static_cast<double>(small_.size()) + 64;
         for (;;) {
@@ -104,8 +101,7 @@ private:
                 cells *= per_axis[k];
             }
             if (cells <= cell_limit) {
-                for (int k = 0; k < Dim; ++k)
-                    cells_per_axis_[k] = static_cast<std::size_t>(per_axis[k]);
+                for (int k = 0; k < Dim; ++k) cells_per_axis_[k] = static_cast<std::size_t>(per_axis[k]);
                 return;
             }
             cell_size_ *= 2;
@@ -154,8 +150,7 @@ private:
         for (int k = 0; k < Dim; ++k) cell_count *= cells_per_axis_[k];
         cell_start_.assign(cell_count + 1, 0);
         for (const Member i : small_)
-            for_each_cell(cell_range(boxes_[i]),
-                          [&](std::size_t cell, const CellCoords&) { ++cell_start_[cell + 1]; });
+            for_each_cell(cell_range(boxes_[i]), [&](std::size_t cell, const CellCoords&) { ++cell_start_[cell + 1]; });
         for (std::size_t c = 0; c < cell_count; ++c) cell_start_[c + 1] += cell_start_[c];
         members_.resize(cell_start_.back());
         std::vector<std::size_t> fill(cell_start_.begin(), cell_start_.end() - 1);
@@ -166,16 +161,13 @@ private:
 
     bool owned_by(const box_type& a, const box_type& b, const CellCoords& cell) const {
         for (int k = 0; k < Dim; ++k) {
-            const double corner =
-                std::max(static_cast<double>(a.min[k]), static_cast<double>(b.min[k]));
+            const double corner = std::max(static_cast<double>(a.min[k]), static_cast<double>(b.min[k]));
             if (cell_coord(corner, k) != cell[k]) return false;
         }
         return true;
     }
 
-    void report(Member i, Member j) {
-        pairs_.push_back({std::min(ids_[i], ids_[j]), std::max(ids_[i], ids_[j])});
-    }
+    void report(Member i, Member j) { pairs_.push_back({std::min(ids_[i], ids_[j]), std::max(ids_[i], ids_[j])}); }
 
     void check_small_pairs() {
         CellRange everything;
@@ -230,23 +222,17 @@ private:
 
 template <std::floating_point Real, int Dim>
 std::vector<Pair> grid_pairs(std::span<const BoxId> ids, std::span<const Box<Real, Dim>> boxes) {
-    if (ids.size() != boxes.size())
-        throw std::invalid_argument("grid_pairs: ids and boxes differ in length");
-    if (boxes.size() > std::numeric_limits<Member>::max())
-        throw std::length_error("grid_pairs: too many boxes");
+    if (ids.size() != boxes.size()) throw std::invalid_argument("grid_pairs: ids and boxes differ in length");
+    if (boxes.size() > std::numeric_limits<Member>::max()) throw std::length_error("grid_pairs: too many boxes");
     for (const auto& box : boxes)
         if (!is_valid(box)) throw std::invalid_argument("grid_pairs: invalid box");
     if (boxes.size() < 2) return {};
     return GridPairFinder<Real, Dim>(ids, boxes).run();
 }
 
-template std::vector<Pair> grid_pairs<float, 2>(std::span<const BoxId>,
-                                                std::span<const Box<float, 2>>);
-template std::vector<Pair> grid_pairs<double, 2>(std::span<const BoxId>,
-                                                 std::span<const Box<double, 2>>);
-template std::vector<Pair> grid_pairs<float, 3>(std::span<const BoxId>,
-                                                std::span<const Box<float, 3>>);
-template std::vector<Pair> grid_pairs<double, 3>(std::span<const BoxId>,
-                                                 std::span<const Box<double, 3>>);
+template std::vector<Pair> grid_pairs<float, 2>(std::span<const BoxId>, std::span<const Box<float, 2>>);
+template std::vector<Pair> grid_pairs<double, 2>(std::span<const BoxId>, std::span<const Box<double, 2>>);
+template std::vector<Pair> grid_pairs<float, 3>(std::span<const BoxId>, std::span<const Box<float, 3>>);
+template std::vector<Pair> grid_pairs<double, 3>(std::span<const BoxId>, std::span<const Box<double, 3>>);
 
 }  // namespace smb::workload

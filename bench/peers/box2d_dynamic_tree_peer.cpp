@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include <box2d/b2_dynamic_tree.h>
 
 #include <cstdint>
@@ -76,7 +77,8 @@ private:
         box_of_proxy_[slot] = box;
         id_of_proxy_[slot] = id;
         alive_[slot] = 1;
-        if (id >= proxy_of_id_.size()) proxy_of_id_.resize(std::max<std::size_t>(id + 1, 2 * proxy_of_id_.size()), no_proxy);
+        if (id >= proxy_of_id_.size())
+            proxy_of_id_.resize(std::max<std::size_t>(id + 1, 2 * proxy_of_id_.size()), no_proxy);
         proxy_of_id_[id] = proxy;
         moved_.push_back(proxy);
     }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include <btBulletCollisionCommon.h>
 
 #include "peers/bullet_broadphase_peer.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "peers/bullet_broadphase_peer.hpp"
 
 #include <btBulletCollisionCommon.h>
@@ -26,7 +27,6 @@ BulletBroadphasePeer::~BulletBroadphasePeer() {
     for (btBroadphaseProxy* proxy : proxy_of_slot_)
         if (proxy != nullptr) broadphase_->destroyProxy(proxy, nullptr);
 }
-
 
 void BulletBroadphasePeer::build(const SceneStep<3>& step, std::vector<Pair>& pairs) {
     std::array<float, 3> low{0, 0, 0}, high{1, 1, 1};

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Drives any Bullet broad phase the way btCollisionWorld does: one proxy per body created once,
 // setAabb for every moving body each step, calculateOverlappingPairs, then a walk over the pair

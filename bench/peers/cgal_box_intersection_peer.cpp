@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include <CGAL/box_intersection_d.h>
 
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One interface for every broad phase in the comparison. The harness feeds each method the same
 // scene steps and compares the pairs it returns; whatever a method does to turn its own output

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One factory per method; each is defined in the file named after it. The optional peers
 // (Bullet, Box2D, CGAL) are compiled only when their packages were found.

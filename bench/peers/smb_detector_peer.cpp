@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "peers/peer_factories.hpp"
 
 #include <sstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "peers/peer_factories.hpp"
 
 #include <span>
@@ -73,15 +74,18 @@ public:
              << ",\"smb_check_s\":" << phases_.check_seconds / n << ",\"smb_copy_s\":" << phases_.copy_seconds / n
              << ",\"smb_level_s\":[" << phases_.level_seconds[0] / n << ',' << phases_.level_seconds[1] / n << ','
              << phases_.level_seconds[2] / n << "],\"smb_detect_s\":" << phases_.total_seconds / n
-             << ",\"smb_sort_moves\":" << static_cast<double>(phases_.sort_moves) / n << ",\"smb_cells\":" << phases_.cells
-             << ",\"smb_oversized\":" << phases_.oversized_boxes << ",\"smb_bytes_held\":" << phases_.bytes_held;
+             << ",\"smb_sort_moves\":" << static_cast<double>(phases_.sort_moves) / n
+             << ",\"smb_cells\":" << phases_.cells << ",\"smb_oversized\":" << phases_.oversized_boxes
+             << ",\"smb_bytes_held\":" << phases_.bytes_held;
         return json.str();
     }
 
 private:
     [[nodiscard]] std::span<const Box<Real, Dim>> boxes_of(const SceneStep<Dim>& step) const {
-        if constexpr (std::is_same_v<Real, float>) return step.boxes;
-        else return widened_;
+        if constexpr (std::is_same_v<Real, float>)
+            return step.boxes;
+        else
+            return widened_;
     }
 
     World<Real, Dim> world_;

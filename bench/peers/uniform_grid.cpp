@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "peers/uniform_grid.hpp"
 
 #include "peers/peer.hpp"

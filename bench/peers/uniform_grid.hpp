@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The uniform grid of the comparison, rebuilt from scratch on every call and written to be as fast
 // as a single-threaded grid gets on boxes of similar size:
@@ -132,7 +133,8 @@ private:
                              _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&query.lanes[4]))));
             return ((_mm_movemask_ps(low) | (_mm_movemask_ps(high) << 4)) & 0x3F) == 0x3F;
         } else {
-            return _mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(record.lanes.data()), _mm_loadu_ps(query.lanes.data()))) == 0xF;
+            return _mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(record.lanes.data()), _mm_loadu_ps(query.lanes.data()))) ==
+                   0xF;
         }
 #else
         bool result = true;

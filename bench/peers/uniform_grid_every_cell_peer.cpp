@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -102,7 +103,8 @@ private:
         entries_.resize(cell_start_[cell_count_]);
         fill_at_.assign(cell_start_.begin(), cell_start_.end() - 1);
         for (std::size_t i = 0; i < boxes.size(); ++i)
-            for_each_cell_of(boxes[i], [&](std::size_t cell) { entries_[fill_at_[cell]++] = static_cast<std::uint32_t>(i); });
+            for_each_cell_of(boxes[i],
+                             [&](std::size_t cell) { entries_[fill_at_[cell]++] = static_cast<std::uint32_t>(i); });
     }
 
     // A pair shared by several cells is reported only in the cell holding the lower corner of
@@ -117,7 +119,8 @@ private:
                     if (!overlaps(first, second)) continue;
                     std::array<std::int64_t, Dim> corner{};
                     for (int k = 0; k < Dim; ++k) corner[k] = cell_coordinate(std::max(first.min[k], second.min[k]), k);
-                    if (flat_index(corner) == cell) pairs.push_back(ordered_pair(step.ids[entries_[a]], step.ids[entries_[b]]));
+                    if (flat_index(corner) == cell)
+                        pairs.push_back(ordered_pair(step.ids[entries_[a]], step.ids[entries_[b]]));
                 }
             }
         }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scenes/clustered.hpp"
 
 #include <cmath>
@@ -27,8 +28,8 @@ std::unique_ptr<Scene<Dim>> make_clustered_scene(const SceneSpec& spec) {
     // A Gaussian cluster of m boxes has peak number density m / ((2π)^(Dim/2) σ^Dim); σ is
     // chosen so that its peak packing density is core_density.
     const double per_cluster = n / cluster_count;
-    const double spread = std::pow(per_cluster * mean_volume / (core_density * std::pow(2 * std::numbers::pi, 0.5 * Dim)),
-                                   1.0 / Dim);
+    const double spread =
+        std::pow(per_cluster * mean_volume / (core_density * std::pow(2 * std::numbers::pi, 0.5 * Dim)), 1.0 / Dim);
 
     std::mt19937_64 layout_rng(spec.seed ^ 0x5eedc1u);
     std::uniform_real_distribution<double> anywhere(0.0, cube_side);
@@ -48,8 +49,8 @@ std::unique_ptr<Scene<Dim>> make_clustered_scene(const SceneSpec& spec) {
         box.side_max = largest_side;
         return box;
     };
-    return std::make_unique<MovingBoxes<Dim>>(spec.boxes, cube_side, largest_side, spec.update_factor,
-                                              spec.seed, place);
+    return std::make_unique<MovingBoxes<Dim>>(spec.boxes, cube_side, largest_side, spec.update_factor, spec.seed,
+                                              place);
 }
 
 template std::unique_ptr<Scene<2>> make_clustered_scene<2>(const SceneSpec&);

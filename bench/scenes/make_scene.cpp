@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include <sstream>
 #include <stdexcept>
 
@@ -27,8 +28,7 @@ std::unique_ptr<Scene<Dim>> make_scene(const SceneSpec& spec) {
         if (spec.family == "sparse") return make_sparse_scene(spec);
     }
 #endif
-    throw std::invalid_argument("no scene family '" + spec.family + "' in " + std::to_string(Dim) +
-                                "D in this build");
+    throw std::invalid_argument("no scene family '" + spec.family + "' in " + std::to_string(Dim) + "D in this build");
 }
 
 template std::unique_ptr<Scene<2>> make_scene<2>(const SceneSpec&);

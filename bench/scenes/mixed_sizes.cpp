@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scenes/mixed_sizes.hpp"
 
 #include <cmath>
@@ -46,8 +47,7 @@ std::unique_ptr<Scene<Dim>> make_mixed_sizes_scene(const SceneSpec& spec) {
         for (int k = 0; k < Dim; ++k) box.centre[k] = anywhere(rng);
         return box;
     };
-    return std::make_unique<MovingBoxes<Dim>>(spec.boxes, cube_side, small_max, spec.update_factor, spec.seed,
-                                              place);
+    return std::make_unique<MovingBoxes<Dim>>(spec.boxes, cube_side, small_max, spec.update_factor, spec.seed, place);
 }
 
 template std::unique_ptr<Scene<2>> make_mixed_sizes_scene<2>(const SceneSpec&);

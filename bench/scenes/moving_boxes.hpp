@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The motion rules of the paper's Section 4 applied to any initial placement, for the scenes the
 // paper has no generator for (clustered, mixed sizes). Per step, with λ, λ_i uniform in (-Λ, Λ):
@@ -33,10 +34,14 @@ public:
     using Placement = std::function<PlacedBox<Dim>(std::mt19937_64&)>;
 
     /// `largest_side` is the paper's b: the scale of the per-step side change.
-    MovingBoxes(std::size_t count, double cube_side, double largest_side, double update_factor,
-                std::uint64_t seed, Placement place)
-        : count_(count), cube_side_(cube_side), largest_side_(largest_side),
-          update_factor_(update_factor), rng_(seed), place_(std::move(place)) {}
+    MovingBoxes(std::size_t count, double cube_side, double largest_side, double update_factor, std::uint64_t seed,
+                Placement place)
+        : count_(count),
+          cube_side_(cube_side),
+          largest_side_(largest_side),
+          update_factor_(update_factor),
+          rng_(seed),
+          place_(std::move(place)) {}
 
     const SceneStep<Dim>& advance() override {
         removed_ids_.clear();

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scenes/paper_environment.hpp"
 
 #include <stdexcept>

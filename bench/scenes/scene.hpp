@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The scenes of the comparison: a stream of time steps, each the complete set of boxes under
 // stable ids plus what changed since the previous step. Every method reads the same stream.

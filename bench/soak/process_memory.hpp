@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The process's memory as the kernel sees it, for the soak and explosion runs (Linux).
 

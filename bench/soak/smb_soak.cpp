@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smb_soak: a long run of one World under heavy churn, for the soak and scale figures of
 // docs/robustness.md.
 //
@@ -12,7 +13,6 @@
 //            [--check-every K] [--density E] [--motion L] [--seed S]
 //
 // --check-every 0 skips the exact comparison (the scale run); samples are still printed.
-
 
 #include <algorithm>
 #include <array>
@@ -43,11 +43,11 @@ struct SoakOptions {
     int dim = 3;
     std::size_t boxes = 100000;
     std::size_t steps = 10000;
-    double churn = 0.2;             ///< fraction of the boxes removed and inserted every step
-    std::size_t sample_every = 100; ///< print a row every this many steps (and at 0 and the end)
-    std::size_t check_every = 100;  ///< compare with the grid every this many steps; 0 never
-    double density = 0.4;           ///< packing density E of the paper's environment
-    double motion = 1e-3;           ///< largest move per step, as a fraction of the cube side
+    double churn = 0.2;              ///< fraction of the boxes removed and inserted every step
+    std::size_t sample_every = 100;  ///< print a row every this many steps (and at 0 and the end)
+    std::size_t check_every = 100;   ///< compare with the grid every this many steps; 0 never
+    double density = 0.4;            ///< packing density E of the paper's environment
+    double motion = 1e-3;            ///< largest move per step, as a fraction of the cube side
     std::uint64_t seed = 1;
 };
 
@@ -86,8 +86,6 @@ SoakOptions parse_options(int argc, char** argv) {
     return options;
 }
 
-
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -101,8 +99,7 @@ public:
 
     explicit ChurningScene(const SoakOptions& options)
         : options_(options),
-          side_(smb::workload::cube_side_for_density(options.boxes, options.density, kMinSide,
-                                                     kMaxSide, Dim)),
+          side_(smb::workload::cube_side_for_density(options.boxes, options.density, kMinSide, kMaxSide, Dim)),
           random_(options.seed) {
         ids_.resize(options.boxes);
         boxes_.resize(options.boxes);
@@ -194,14 +191,12 @@ private:
 };
 
 /// Counts the pairs only one side has; prints the first few of each.
-std::size_t count_differences(const std::vector<smb::Pair>& found,
-                              const std::vector<smb::Pair>& expected, std::size_t step) {
+std::size_t count_differences(const std::vector<smb::Pair>& found, const std::vector<smb::Pair>& expected,
+                              std::size_t step) {
     std::vector<smb::Pair> missing;
     std::vector<smb::Pair> extra;
-    std::set_difference(expected.begin(), expected.end(), found.begin(), found.end(),
-                        std::back_inserter(missing));
-    std::set_difference(found.begin(), found.end(), expected.begin(), expected.end(),
-                        std::back_inserter(extra));
+    std::set_difference(expected.begin(), expected.end(), found.begin(), found.end(), std::back_inserter(missing));
+    std::set_difference(found.begin(), found.end(), expected.begin(), expected.end(), std::back_inserter(extra));
     for (std::size_t i = 0; i < std::min<std::size_t>(missing.size(), 5); ++i)
         std::cerr << "step " << step << ": missing pair " << missing[i].a << ' ' << missing[i].b << '\n';
     for (std::size_t i = 0; i < std::min<std::size_t>(extra.size(), 5); ++i)
@@ -215,9 +210,9 @@ int soak(const SoakOptions& options) {
     ChurningScene<Dim> scene(options);
     smb::World<double, Dim> world;
     world.insert(scene.ids(), scene.boxes());
-    std::cout << "# dim " << Dim << ", boxes " << options.boxes << ", cube side " << scene.side()
-              << ", churn " << options.churn << ", motion " << options.motion << ", seed "
-              << options.seed << ", setup " << seconds_since(setup_start) << " s\n";
+    std::cout << "# dim " << Dim << ", boxes " << options.boxes << ", cube side " << scene.side() << ", churn "
+              << options.churn << ", motion " << options.motion << ", seed " << options.seed << ", setup "
+              << seconds_since(setup_start) << " s\n";
     std::cout << "step,boxes,pairs,step_s,detect_s,bytes_held,bytes_per_box,rss_bytes,"
                  "peak_rss_bytes,checked\n"
               << std::flush;
@@ -254,17 +249,15 @@ int soak(const SoakOptions& options) {
         }
         if (step % options.sample_every == 0 || last) {
             const std::size_t held = world.bytes_held();
-            std::cout << step << ',' << world.size() << ',' << pairs.size() << ',' << step_s << ','
-                      << detect_s << ',' << held << ','
-                      << static_cast<double>(held) / static_cast<double>(world.size()) << ','
-                      << resident_bytes() << ',' << peak_resident_bytes() << ',' << checked
-                      << '\n'
+            std::cout << step << ',' << world.size() << ',' << pairs.size() << ',' << step_s << ',' << detect_s << ','
+                      << held << ',' << static_cast<double>(held) / static_cast<double>(world.size()) << ','
+                      << resident_bytes() << ',' << peak_resident_bytes() << ',' << checked << '\n'
                       << std::flush;
         }
     }
     const double steps = static_cast<double>(std::max<std::size_t>(options.steps, 1));
-    std::cout << "# mean step " << step_total / steps << " s, mean detect " << detect_total / steps
-              << " s, checks " << checks << ", failed " << failed_checks << '\n';
+    std::cout << "# mean step " << step_total / steps << " s, mean detect " << detect_total / steps << " s, checks "
+              << checks << ", failed " << failed_checks << '\n';
     return failed_checks == 0 ? 0 : 2;
 }
 

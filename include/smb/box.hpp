@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Axis-aligned boxes and the closed overlap convention shared by every part of smb.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The SMB broad phase over an array of boxes the caller keeps: no ids, no copy of the input.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Exceptions thrown by smb. Every call of World and Detector that throws leaves the caller's
 // data as it was: a world holds the same boxes, and detect(..., std::vector<Pair>&) leaves the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a World or Detector held for its last detection: floats or the doubles themselves.
 

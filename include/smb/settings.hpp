@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Tuning of a World (WorldSettings) and of a Detector (DetectorSettings), and what they share
 // (DetectionSettings). Every field has a default that suits the paper's workloads; a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What one detect() call did and cost, in fields that mean one thing in every pipeline: a phase
 // a pipeline does not have stays zero there.
@@ -18,7 +19,7 @@ struct DetectStats {
     /// Items moved by the sorts of this detection: the diminishing increment sorts of the lists
     /// (Pipeline::paper_lists), the insertion sorts inside the cells' sweeps (persistent cuts).
     std::size_t sort_moves = 0;
-    std::size_t bytes_held = 0;       ///< heap bytes the world or detector holds after the call
+    std::size_t bytes_held = 0;  ///< heap bytes the world or detector holds after the call
 
     /// Detector with a skin (DetectorSettings::skin): candidate pairs kept after this
     /// detection, boxes that left their fat box (or arrived) and found new candidates, and
@@ -65,7 +66,7 @@ struct DetectStats {
     /// fields' time but for the bookkeeping between them.
     double copy_seconds = 0;
     std::array<double, 3> level_seconds{};
-    double total_seconds = 0;          ///< the whole call
+    double total_seconds = 0;  ///< the whole call
 };
 
 }  // namespace smb

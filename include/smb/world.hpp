@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The persistent SMB world: boxes that move between steps and the sorted lists that follow them.
 
@@ -152,7 +153,7 @@ inline constexpr bool is_box<Box<Real, Dim>> = true;
 /// or not), a C array.
 template <class Range>
 concept BoxRange = std::ranges::contiguous_range<const Range> && std::ranges::sized_range<const Range> &&
-                   detail::is_box<std::ranges::range_value_t<const Range>>;
+    detail::is_box<std::ranges::range_value_t<const Range>>;
 
 /// find_overlapping_pairs over any BoxRange: the same detection, over a span of its boxes.
 template <BoxRange Range>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "core/assert.hpp"
 
 #include <atomic>
@@ -8,8 +9,7 @@ namespace smb {
 namespace {
 
 void default_handler(const char* condition, const char* message, const char* file, int line) {
-    std::fprintf(stderr, "smb: internal check failed: %s (%s) at %s:%d\n", condition, message,
-                 file, line);
+    std::fprintf(stderr, "smb: internal check failed: %s (%s) at %s:%d\n", condition, message, file, line);
 }
 
 std::atomic<AssertHandler> g_handler{&default_handler};

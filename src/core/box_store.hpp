@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The boxes of a world under their caller-chosen ids, in dense slots. Slots are what the SMB
 // lists number (the paper's "AABB n"); ids are what the caller sees. Changes made between two
@@ -88,8 +89,7 @@ public:
 
     void assign(std::span<const box_type> boxes) {
         for (std::size_t i = 0; i < boxes.size(); ++i) {
-            if (!is_valid(boxes[i]))
-                throw InvalidBoxError(describe_invalid_box(static_cast<BoxId>(i), boxes[i]));
+            if (!is_valid(boxes[i])) throw InvalidBoxError(describe_invalid_box(static_cast<BoxId>(i), boxes[i]));
         }
         const auto n = static_cast<BoxId>(boxes.size());
         // Ids at or above n go first, so that the slots they free are compacted together.
@@ -162,15 +162,15 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return boxes_.capacity() * sizeof(box_type) + ids_.capacity() * sizeof(BoxId) +
-               alive_.capacity() + slot_of_id_.bytes_held();
+        return boxes_.capacity() * sizeof(box_type) + ids_.capacity() * sizeof(BoxId) + alive_.capacity() +
+               slot_of_id_.bytes_held();
     }
 
 private:
     static void require_same_length(std::size_t ids, std::size_t boxes, const char* what) {
         if (ids != boxes) {
-            throw ArgumentError(std::string(what) + ": " + std::to_string(ids) + " ids but " +
-                                std::to_string(boxes) + " boxes");
+            throw ArgumentError(std::string(what) + ": " + std::to_string(ids) + " ids but " + std::to_string(boxes) +
+                                " boxes");
         }
     }
     static void validate_boxes(std::span<const BoxId> ids, std::span<const box_type> boxes) {
@@ -178,18 +178,14 @@ private:
             if (!is_valid(boxes[i])) throw InvalidBoxError(describe_invalid_box(ids[i], boxes[i]));
         }
     }
-    static std::string unknown_message(BoxId id) {
-        return "box " + std::to_string(id) + " is not in the world";
-    }
-    static std::string duplicate_message(BoxId id) {
-        return "box " + std::to_string(id) + " is already in the world";
-    }
+    static std::string unknown_message(BoxId id) { return "box " + std::to_string(id) + " is not in the world"; }
+    static std::string duplicate_message(BoxId id) { return "box " + std::to_string(id) + " is already in the world"; }
     void reserve_for(std::size_t extra) {
         // The deepest SMB list numbers 2^Dim corners per slot in 32 bits.
         constexpr std::size_t max_slots = (std::size_t{1} << (32 - Dim)) - 1;
         if (boxes_.size() + extra > max_slots)
-            throw ArgumentError("a " + std::to_string(Dim) + "D world holds at most " +
-                                std::to_string(max_slots) + " boxes (including boxes removed "
+            throw ArgumentError("a " + std::to_string(Dim) + "D world holds at most " + std::to_string(max_slots) +
+                                " boxes (including boxes removed "
                                 "since the last detection)");
         reserve_with_slack(boxes_, boxes_.size() + extra);
         reserve_with_slack(ids_, ids_.size() + extra);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // detect(..., std::vector<Pair>&) of World and Detector: the pairs of one detection collected
 // into the caller's vector, which keeps its old contents if the detection throws.
@@ -27,8 +28,8 @@ struct PairAppender {
 
     void operator()(std::span<const Pair> chunk) const {
         if (chunk.size() > limit - (pairs.size() - kept)) {
-            throw PairLimitError("detect: more than " + std::to_string(limit) + " overlapping pairs (" +
-                                 limit_name + "); use " + streaming_call + " to consume them in chunks");
+            throw PairLimitError("detect: more than " + std::to_string(limit) + " overlapping pairs (" + limit_name +
+                                 "); use " + streaming_call + " to consume them in chunks");
         }
         pairs.insert(pairs.end(), chunk.begin(), chunk.end());
     }

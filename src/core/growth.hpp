@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // How the arrays that follow the number of boxes grow. std::vector::resize doubles its capacity
 // when it outgrows it, which would leave a world whose box count crept past a power of two

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The boxes a Detector holds for itself: the caller's double boxes as floats, shifted by an
 // origin (the middle of the scene) and rounded to the nearest float. Half the bytes of a double
@@ -31,7 +32,8 @@ template <std::floating_point Input>
 
 /// The held copy of `box`: shifted by `origin` and rounded to floats.
 template <std::floating_point Input, int Dim>
-[[nodiscard]] inline Box<float, Dim> held_box(const Box<Input, Dim>& box, const std::array<Input, Dim>& origin) noexcept {
+[[nodiscard]] inline Box<float, Dim> held_box(const Box<Input, Dim>& box,
+                                              const std::array<Input, Dim>& origin) noexcept {
     Box<float, Dim> held;
     for (int k = 0; k < Dim; ++k) {
         held.min[k] = clamped_float(box.min[k] - origin[k]);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The map from the caller's ids to the store's slots. Simulations mostly number their bodies
 // 0, 1, 2, ... (World::assign() does so by definition): those ids index a plain array of slots,
@@ -117,8 +118,8 @@ private:
         }
     }
 
-    std::vector<Slot> dense_;                     // dense_[id]: the slot of a small id, or kNoSlot
-    std::unordered_map<BoxId, Slot> sparse_;      // the other ids
+    std::vector<Slot> dense_;                 // dense_[id]: the slot of a small id, or kNoSlot
+    std::unordered_map<BoxId, Slot> sparse_;  // the other ids
     std::size_t count_ = 0;
 };
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The second test of a pair that held floats pass (held_box.hpp): on the caller's own boxes,
 // wherever the floats could not prove the overlap. This is what keeps the pairs exact when double
@@ -19,8 +20,7 @@ namespace smb::detail {
 /// count_retest().
 template <std::floating_point Held, std::floating_point Input, int Dim, class CountRetest>
 [[nodiscard]] inline bool confirmed_on_input(std::span<const Box<Input, Dim>> input, std::span<const Slot> slot_at,
-                                             std::uint32_t a, std::uint32_t b, bool sure,
-                                             CountRetest&& count_retest) {
+                                             std::uint32_t a, std::uint32_t b, bool sure, CountRetest&& count_retest) {
     if constexpr (std::same_as<Held, Input>) {
         (void)input, (void)slot_at, (void)a, (void)b, (void)sure, (void)count_retest;
         return true;

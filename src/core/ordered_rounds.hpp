@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Work shared among threads whose results must reach the caller in order, on the calling
 // thread: the cell checks of the persistent-cut pipeline (columns) and the skin list's pass

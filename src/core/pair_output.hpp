@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The pairs of one detection on their way to the caller's sink, in chunks.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Software prefetch of a whole object. A box of doubles (48 bytes in 3D) straddles two cache
 // lines every other time, and asking for its first byte alone leaves the second line to miss

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The check every Detector input passes, and what the Detector learns from it: the bounds of the
 // scene, and whether floats shifted to its middle resolve its boxes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // How BoxStore::compact() renumbered the slots: every old slot's new slot, or kNoSlot for a
 // removed box. The compaction moves few boxes (box_store.hpp), so most slots keep their number;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The seconds a phase of a detection takes, as DetectStats reports them.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The threads a detection runs on (DetectionSettings::threads), and what each keeps for itself.
 // Without OpenMP every pass runs on the calling thread, as thread 0 of a team of one.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The check of the persistent-cut pipeline's cells (cell_pairs.hpp, one column of cells after
 // another) and of its oversized boxes, shared among the threads, with the pairs reaching the
@@ -229,7 +230,8 @@ void CellChecks<Real, Dim>::check_one_oversized(const Checked& checked, std::siz
     const std::span<const Position> sorted = checked.oversized;  // in x order
     const Position big = sorted[index];
     const Box<Real, Dim>& a = boxes[big];
-    checked.cells.for_each_box_overlapping(a, boxes, [&](Position other) { collect(big, other); }, give_up);
+    checked.cells.for_each_box_overlapping(
+        a, boxes, [&](Position other) { collect(big, other); }, give_up);
     for (std::size_t j = index + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
         if (overlaps(a, boxes[sorted[j]])) collect(big, sorted[j]);
     }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The order the persistent-cut pipeline reads the boxes in: every slot once, cell by cell as the
 // last detection left them (x-sorted within a swept cell), and the boxes and ids copied in that
@@ -74,8 +75,10 @@ public:
         const std::size_t n = order_.size();
         resize_with_slack(ordered_, n);
         own_ids_ = !store_ids.empty();
-        if (own_ids_) resize_with_slack(ordered_ids_, n);
-        else std::vector<BoxId>().swap(ordered_ids_);
+        if (own_ids_)
+            resize_with_slack(ordered_ids_, n);
+        else
+            std::vector<BoxId>().swap(ordered_ids_);
         // Each box is a miss of its own (the store is in slot order, not cell order) and the loop
         // does little else, so the requests must start far ahead to keep enough in flight.
         constexpr std::size_t ahead = 64;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The cell check of the persistent-cut pipeline: the pairs of one cell, found in one of two ways
 // by the number m of boxes registered in the cell. Either way the boxes are copied out one array
@@ -120,16 +121,18 @@ private:
 
     void lay_out_sorted(const std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
                         std::span<const Box<Real, Dim>> boxes, const CellFloor<Real, Dim>& floor) {
-        lay_out_columns(m, 0, [&](std::size_t r) { return entries[order[r] & 0xFFFFFFFFU]; },
-                        [&](std::size_t r) { return static_cast<std::uint32_t>(order[r] >> 32); }, boxes, floor);
+        lay_out_columns(
+            m, 0, [&](std::size_t r) { return entries[order[r] & 0xFFFFFFFFU]; },
+            [&](std::size_t r) { return static_cast<std::uint32_t>(order[r] >> 32); }, boxes, floor);
     }
 
     /// As registered, for the all-pairs test, which reads no keys, with room for every pair.
     void lay_out(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
                  const CellFloor<Real, Dim>& floor) {
         const std::size_t m = entries.size();
-        lay_out_columns(m, m * (m - (m > 0 ? 1 : 0)) / 2 + kPadding, [&](std::size_t r) { return entries[r]; },
-                        NoKeys{}, boxes, floor);
+        lay_out_columns(
+            m, m * (m - (m > 0 ? 1 : 0)) / 2 + kPadding, [&](std::size_t r) { return entries[r]; }, NoKeys{}, boxes,
+            floor);
     }
 
     struct NoKeys {};  // the all-pairs test reads no keys: none are written

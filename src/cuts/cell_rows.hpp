@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The row tests of a cell laid out in columns (cell_scratch.hpp): each box of the cell, a row,
 // against the boxes after it, four or eight at a time (float_lanes.hpp), on the eight lanes of
@@ -150,9 +151,7 @@ private:
                                             Report& report) const {
         sweep_in_lanes<8>(m, boxes, report);
     }
-    [[gnu::target("avx2,popcnt")]] std::size_t pair_rows_avx2(std::size_t m) {
-        return pair_rows_in_lanes<8>(m);
-    }
+    [[gnu::target("avx2,popcnt")]] std::size_t pair_rows_avx2(std::size_t m) { return pair_rows_in_lanes<8>(m); }
 #endif
 };
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where a cell check lays out its boxes and writes down its hits: one buffer, the columns of
 // the cell at a stride that follows the cell's own size, and the hit list right after them.
@@ -27,12 +28,12 @@ public:
 
     /// The arrays of one cell, valid until the next lay_out_for().
     struct Columns {
-        Mask* inside = nullptr;                  // the cell's lower-corner bits, one per box
+        Mask* inside = nullptr;  // the cell's lower-corner bits, one per box
         std::array<float*, Dim> min{};
         std::array<float*, Dim> max{};
-        std::uint32_t* position = nullptr;       // where the box lies in the ordered array
-        std::uint32_t* key = nullptr;            // its x key (the sweep only)
-        std::uint32_t* hits = nullptr;           // room for `hit_room` packed pairs
+        std::uint32_t* position = nullptr;  // where the box lies in the ordered array
+        std::uint32_t* key = nullptr;       // its x key (the sweep only)
+        std::uint32_t* hits = nullptr;      // room for `hit_room` packed pairs
     };
 
     /// Arrays for `rows` boxes (padding included) and `hit_room` hits. Grows the buffer when it
@@ -64,9 +65,9 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept { return capacity_ * sizeof(std::uint32_t); }
 
 private:
-    static constexpr std::size_t kColumns = 3 + 2 * Dim;     // position, key, inside, min and max per axis
-    static constexpr std::size_t kFloatsPerLine = 16;        // a column starts on a cache line
-    static constexpr std::align_val_t kAlignment{4096};      // the layout counts from a 4 KiB boundary
+    static constexpr std::size_t kColumns = 3 + 2 * Dim;  // position, key, inside, min and max per axis
+    static constexpr std::size_t kFloatsPerLine = 16;     // a column starts on a cache line
+    static constexpr std::align_val_t kAlignment{4096};   // the layout counts from a 4 KiB boundary
 
     struct Release {
         void operator()(std::uint32_t* words) const noexcept { ::operator delete(words, kAlignment); }

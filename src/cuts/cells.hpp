@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The cells of the persistent-cut pipeline's last regrouping, and the questions asked of them:
 // which cells a box covers, and which boxes registered there overlap a query box. The oversized
@@ -23,8 +24,8 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 struct Cells {
     const CutTree<Real, Dim>* cuts = nullptr;
-    std::span<const Position> entries;      // the positions registered in each cell, cell by cell
-    std::span<const std::uint32_t> begin;   // cell c holds entries [begin[c], begin[c + 1])
+    std::span<const Position> entries;     // the positions registered in each cell, cell by cell
+    std::span<const std::uint32_t> begin;  // cell c holds entries [begin[c], begin[c + 1])
 
     static constexpr int axis_of_level(int level) noexcept { return CutTree<Real, Dim>::axis_of_level(level); }
 
@@ -69,8 +70,8 @@ struct Cells {
     /// registered in a cell, and `query`, have min below the cell's upper plane on every axis).
     /// Stops early once *give_up is set.
     template <class Visit>
-    void for_each_box_overlapping(const Box<Real, Dim>& query, std::span<const Box<Real, Dim>> boxes,
-                                  Visit&& visit, const bool* give_up = nullptr) const {
+    void for_each_box_overlapping(const Box<Real, Dim>& query, std::span<const Box<Real, Dim>> boxes, Visit&& visit,
+                                  const bool* give_up = nullptr) const {
         for_each_covering(query, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
             if (give_up != nullptr && *give_up) return;
             for (std::uint32_t i = begin[cell]; i < begin[cell + 1]; ++i) {

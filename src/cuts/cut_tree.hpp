@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The axial cuts of the persistent-cut pipeline, kept from one detection to the next.
 //
@@ -57,8 +58,9 @@ template <std::floating_point Real>
 /// segment is nearly always right, and a box that crossed a plane since lies next to it.
 /// `misses` counts the values that needed the full search.
 template <std::floating_point Real>
-[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value, std::uint32_t hint,
-                                                std::size_t& misses) noexcept {
+[[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_near(std::span<const Real> cuts, Real value,
+                                                                       std::uint32_t hint,
+                                                                       std::size_t& misses) noexcept {
     const std::size_t n = cuts.size();
     if (hint <= n) {
         if (hint == 0 || cuts[hint - 1] <= value) {
@@ -81,7 +83,7 @@ template <std::floating_point Real>
 /// checked pair by pair do not leave them (cell_pairs.hpp).
 template <std::floating_point Real>
 [[nodiscard]] [[gnu::always_inline]] inline std::uint32_t segment_of_max(std::span<const Real> cuts, Real max,
-                                                                        std::uint32_t lo) noexcept {
+                                                                         std::uint32_t lo) noexcept {
     const Real* next = cuts.data() + lo;
     const bool past_next = next[0] <= max;
     const bool past_after = next[1] <= max;
@@ -143,9 +145,7 @@ public:
         const std::uint32_t limit = limit_[level][group];
         return limit == 0 || fullest > limit;
     }
-    [[nodiscard]] bool was_cut(int level, std::size_t group) const noexcept {
-        return limit_[level][group] != 0;
-    }
+    [[nodiscard]] bool was_cut(int level, std::size_t group) const noexcept { return limit_[level][group] != 0; }
 
     /// The axial cut: the keys in `selector` (the lower coordinates of the group's boxes, in
     /// any order; they are reordered) are split into k segments of equal counts. Equal keys
@@ -200,8 +200,7 @@ public:
 
     /// Lower plane of segment `segment` of group `group` (-inf for the first).
     [[nodiscard]] Real lower(int level, std::size_t group, std::uint32_t segment) const noexcept {
-        return segment == 0 ? -std::numeric_limits<Real>::infinity()
-                            : cuts_[level][group * (k_ + 1) + segment - 1];
+        return segment == 0 ? -std::numeric_limits<Real>::infinity() : cuts_[level][group * (k_ + 1) + segment - 1];
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {

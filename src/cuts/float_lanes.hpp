@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The vector lanes the cell check and the skin list compare boxes in (GCC vector extensions):
 // four or eight floats at once, the choice made when the program runs, and the two ways a test's
@@ -5,9 +6,9 @@
 
 #include <array>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <cstddef>
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define SMB_LANES_AVX2 1
@@ -68,8 +69,8 @@ template <>
 /// Writes the values of the lanes set in `bits` to `out`, in lane order, and returns the end of
 /// what it wrote; the Lanes slots from `out` on may all be written. No branch on the bits.
 template <std::size_t Lanes>
-[[gnu::always_inline]] inline std::uint32_t* append_set_lanes(std::uint32_t* out, unsigned bits,
-                                                              const typename FloatLanes<Lanes>::Masks& values) noexcept {
+[[gnu::always_inline]] inline std::uint32_t* append_set_lanes(
+    std::uint32_t* out, unsigned bits, const typename FloatLanes<Lanes>::Masks& values) noexcept {
     for (std::size_t lane = 0; lane < Lanes; ++lane) {
         *out = static_cast<std::uint32_t>(values[lane]);
         out += (bits >> lane) & 1U;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where each entry of a group of one level falls: the segments of the group that a box's
 // [min, max] touches on the level's axis, against the group's planes (cut_tree.hpp), and how many

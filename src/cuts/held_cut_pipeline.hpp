@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The persistent-cut pipeline as a World or Detector of double boxes runs it: holding floats
 // (the boxes shifted to the middle of the scene and rounded, held_box.hpp) wherever floats
@@ -13,9 +14,9 @@
 #include <vector>
 
 #include "core/assert.hpp"
-#include "cuts/persistent_cut_pipeline.hpp"
 #include "core/scene_bounds.hpp"
 #include "core/slot_renumbering.hpp"
+#include "cuts/persistent_cut_pipeline.hpp"
 #include "smb/box.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/settings.hpp"
@@ -32,8 +33,10 @@ public:
     [[nodiscard]] HeldPrecision precision() const noexcept { return precision_; }
     /// Where held floats start from (double input held as floats only).
     [[nodiscard]] std::array<Real, Dim> origin() const noexcept {
-        if constexpr (kMayRound) return judgement_.origin;
-        else return {};
+        if constexpr (kMayRound)
+            return judgement_.origin;
+        else
+            return {};
     }
     /// Pairs the held floats could not settle, tested again on the input, in the last detection.
     [[nodiscard]] std::size_t retested() const noexcept { return retested_; }
@@ -50,8 +53,8 @@ public:
         } else {
             const std::size_t n = boxes.size();
             const bool inside = judged_ && bounds.within(judgement_.region);
-            const bool stale = !inside || 4 * n > 5 * judged_boxes_ || 5 * n < 4 * judged_boxes_ ||
-                               ++since_judged_ >= kJudgeEvery;
+            const bool stale =
+                !inside || 4 * n > 5 * judged_boxes_ || 5 * n < 4 * judged_boxes_ || ++since_judged_ >= kJudgeEvery;
             if (!stale) return;
             FloatResolution<Real, Dim> judged = judge_float_resolution(boxes, bounds);
             judged_ = true;
@@ -73,9 +76,8 @@ public:
     /// Reports every overlapping pair of `boxes` (box `slot` under ids[slot], or under `slot`
     /// where `ids` is empty) as judge() chose to hold them; `bounds` as judge() had them.
     template <class Report>
-    void detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> ids,
-                const SceneBounds<Real, Dim>& bounds, const DetectionSettings& settings, Report& report,
-                DetectStats& stats) {
+    void detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> ids, const SceneBounds<Real, Dim>& bounds,
+                const DetectionSettings& settings, Report& report, DetectStats& stats) {
         SMB_ASSERT(precision_ != HeldPrecision::none, "judge() chose what to hold");
         retested_ = 0;
         if (uses_rounded()) {
@@ -135,9 +137,7 @@ private:
     using ExactPipeline = PersistentCutPipeline<Real, Dim, Real>;
     using RoundedPipeline = std::conditional_t<kMayRound, PersistentCutPipeline<float, Dim, Real>, ExactPipeline>;
 
-    [[nodiscard]] bool uses_rounded() const noexcept {
-        return kMayRound && precision_ == HeldPrecision::floats;
-    }
+    [[nodiscard]] bool uses_rounded() const noexcept { return kMayRound && precision_ == HeldPrecision::floats; }
 
     static constexpr std::size_t kJudgeEvery = 64;
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The levels of the persistent-cut pipeline: level l (axis Dim-1-l) registers every box of every
 // group in each segment of the group its [min, max] touches (group_locator.hpp), by a stable
@@ -52,8 +53,8 @@ public:
         for (int level = 1; level < Dim; ++level) {
             const int source = (level - 1) % 2;
             const int target = level % 2;
-            cutting += regroup_level(level, cuts, lists_[source], begin_[source], boxes, lists_[target],
-                                     begin_[target]);
+            cutting +=
+                regroup_level(level, cuts, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
             locator_.judge_hints(level, cuts.segments(), workers_);
             cells_list_ = target;
             stats.level_seconds[static_cast<std::size_t>(level)] = phase.lap();
@@ -100,12 +101,12 @@ private:
                          std::vector<Position>& out, std::vector<std::uint32_t>& out_begin);
     void publish_marks();
 
-    std::array<std::vector<Position>, 2> lists_;         // entries of a level, grouped by segment
-    std::array<std::vector<std::uint32_t>, 2> begin_;    // group offsets into lists_
-    int cells_list_ = 0;                                 // which of lists_ holds the cells
-    std::vector<std::uint32_t> ranges_;  // per entry of the level: first | last segment << 16
-    std::vector<std::uint32_t> counts_;  // the index array of levels 1 and deeper
-    std::vector<std::uint8_t> oversized_;   // per position; written through atomic_ref
+    std::array<std::vector<Position>, 2> lists_;       // entries of a level, grouped by segment
+    std::array<std::vector<std::uint32_t>, 2> begin_;  // group offsets into lists_
+    int cells_list_ = 0;                               // which of lists_ holds the cells
+    std::vector<std::uint32_t> ranges_;                // per entry of the level: first | last segment << 16
+    std::vector<std::uint32_t> counts_;                // the index array of levels 1 and deeper
+    std::vector<std::uint8_t> oversized_;              // per position; written through atomic_ref
     std::vector<Position> oversized_list_;
     GroupLocator<Real, Dim> locator_;
     PerThread<Worker> workers_;
@@ -161,8 +162,8 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
     const std::uint32_t fullest = cuts.was_cut(0, 0) ? locate_shares() : 0;
     if (cuts.needs_cut(0, 0, fullest)) {
         const Stopwatch cut_watch;
-        cuts.cut_group(0, 0, n, [&](std::size_t i) { return boxes[i].min[axis_of_level(0)]; },
-                        workers_[0].quantiles);
+        cuts.cut_group(
+            0, 0, n, [&](std::size_t i) { return boxes[i].min[axis_of_level(0)]; }, workers_[0].quantiles);
         const std::uint32_t balanced = locate_shares();
         std::size_t registrations = 0;
         for (const Worker& worker : workers_)
@@ -188,7 +189,8 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
 #pragma omp parallel for num_threads(threads_) schedule(static, 1)
     for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
         std::uint32_t* cursor = workers_[static_cast<std::size_t>(t)].count.data();
-        for (std::size_t i = share_begin(static_cast<std::size_t>(t)); i < share_begin(static_cast<std::size_t>(t) + 1); ++i) {
+        for (std::size_t i = share_begin(static_cast<std::size_t>(t)); i < share_begin(static_cast<std::size_t>(t) + 1);
+             ++i) {
             const std::uint32_t range = ranges_[i];
             const std::uint32_t lo = SegmentRange::lo_of(range);
             const std::uint32_t hi = SegmentRange::hi_of(range);
@@ -232,17 +234,16 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
         std::uint32_t* ranges = ranges_.data() + in_begin[g];
         std::uint32_t* segment_count = count + g * k + 1;
         const std::size_t marked_before = worker.marks.size();
-        const std::uint32_t fullest =
-            cuts.was_cut(level, g)
-                ? locator_.locate(level, g, cuts, entries, boxes, ranges, segment_count, worker, oversized_.data())
-                : 0;
+        const std::uint32_t fullest = cuts.was_cut(level, g) ? locator_.locate(level, g, cuts, entries, boxes, ranges,
+                                                                               segment_count, worker, oversized_.data())
+                                                             : 0;
         if (cuts.needs_cut(level, g, fullest)) {
             const Stopwatch cut_watch;
             // What the old planes called oversized is judged again against the new ones.
             worker.marks.resize(marked_before);
             // No entry is published oversized (see GroupLocator::locate()): every one takes part.
-            cuts.cut_group(level, g, entries.size(), [&](std::size_t i) { return boxes[entries[i]].min[axis]; },
-                            worker.quantiles);
+            cuts.cut_group(
+                level, g, entries.size(), [&](std::size_t i) { return boxes[entries[i]].min[axis]; }, worker.quantiles);
             const std::uint32_t balanced =
                 locator_.locate(level, g, cuts, entries, boxes, ranges, segment_count, worker, oversized_.data());
             std::size_t registrations = 0;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The cell check's keys: coordinates as floats, and as 32-bit keys whose unsigned order is the
 // coordinates' order, for the sort on x of a crowded cell.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The default pipeline: SMB's levels of axial cuts, with the cuts kept from one step to the next
 // (cut_tree.hpp) so that every level is a linear bucketing pass instead of a sort.
@@ -154,9 +155,9 @@ void PersistentCutPipeline<Real, Dim, Input>::plan_segments(std::size_t n, const
 
 template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Report>
-void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, Dim>> input,
-                                                     std::span<const BoxId> ids, const DetectionSettings& settings,
-                                                     Report& report, DetectStats& stats) {
+void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids,
+                                                     const DetectionSettings& settings, Report& report,
+                                                     DetectStats& stats) {
     const std::size_t n = input.size();
     input_ = input;
     retested_ = 0;
@@ -182,8 +183,8 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     cell_order_.copy(input, ids, origin_, threads_);
     stats.copy_seconds = copy_watch.seconds();
     const std::span<const Box<Real, Dim>> boxes = cell_order_.boxes();
-    const double cutting = regrouping_.run(boxes, cuts_, threads_,
-                                           [this](Position position) { return cell_order_.id_at(position); }, stats);
+    const double cutting = regrouping_.run(
+        boxes, cuts_, threads_, [this](Position position) { return cell_order_.id_at(position); }, stats);
     // The misses of a cold order say nothing of the next detection, whose entries will come in
     // this one's cells: it tries the hint, and judges again from its own misses.
     if (cold) regrouping_.set_without_hint(false);

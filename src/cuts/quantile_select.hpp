@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The quantiles of the axial cut: the keys of ranks floor(j n / k), j = 1 .. k-1, of n keys.
 //
@@ -99,7 +100,8 @@ private:
         if (first_j >= last_j) return;
         const std::uint32_t middle_j = first_j + (last_j - first_j) / 2;
         const std::size_t rank = rank_of(middle_j, keys.size(), segments);
-        std::nth_element(keys.begin() + static_cast<std::ptrdiff_t>(from), keys.begin() + static_cast<std::ptrdiff_t>(rank),
+        std::nth_element(keys.begin() + static_cast<std::ptrdiff_t>(from),
+                         keys.begin() + static_cast<std::ptrdiff_t>(rank),
                          keys.begin() + static_cast<std::ptrdiff_t>(to));
         out[middle_j - 1] = keys[rank];
         // Ranks may repeat when n < k: both sides keep the selected place.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The axial cut of the paper's Section 2.3: a sorted section is cut into segments holding
 // (nearly) equal numbers of items, so that cells follow the boxes, not the space.
@@ -26,9 +27,8 @@ using SegmentId = std::uint32_t;
 /// item id), and appends the list offset (relative to `section_offset`) at which each segment
 /// begins to `segment_begin`.
 template <std::floating_point Real>
-void cut_section(std::span<const AxisEntry<Real>> section, std::size_t section_offset,
-                 SegmentId segments, SegmentId first_segment, std::span<SegmentId> segment_of,
-                 std::vector<std::uint32_t>& segment_begin) {
+void cut_section(std::span<const AxisEntry<Real>> section, std::size_t section_offset, SegmentId segments,
+                 SegmentId first_segment, std::span<SegmentId> segment_of, std::vector<std::uint32_t>& segment_begin) {
     const std::size_t n = section.size();
     std::size_t begin = 0;
     for (SegmentId s = 0; s < segments; ++s) {

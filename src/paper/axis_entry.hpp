@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // An item of a persistent SMB list: the id of a projection (the paper's vertex numbers) with
 // its coordinate kept beside it, so that sorting compares contiguous keys instead of chasing

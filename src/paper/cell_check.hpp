@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The cell check of the paper's Section 2.4 (8) and steps 13-15 of its Section 3. Inside one
 // cell every box present is known by its local number (global_local_map.hpp). For each axis the
@@ -44,9 +45,8 @@ public:
 
     /// Checks one cell. `report(slot_a, slot_b)` receives each new contact.
     template <class Report>
-    void check(const CellLists& cell, const std::vector<std::uint8_t>& oversized,
-               std::span<const Box<Real, Dim>> boxes, GlobalLocalMap& map, const MaskArray& mask,
-               Report&& report) {
+    void check(const CellLists& cell, const std::vector<std::uint8_t>& oversized, std::span<const Box<Real, Dim>> boxes,
+               GlobalLocalMap& map, const MaskArray& mask, Report&& report) {
         build_local_map(cell.deepest, oversized, map);
         const std::size_t m = map.size();
         if (m >= 2) {
@@ -68,12 +68,10 @@ private:
     static constexpr std::uint8_t kAllAxes = static_cast<std::uint8_t>((1U << Dim) - 1);
 
     static constexpr Item slot_of_corner(Item corner) noexcept { return corner >> Dim; }
-    static constexpr Item end_on_level(Item corner, int level) noexcept {
-        return (corner >> (Dim - 1 - level)) & 1U;
-    }
+    static constexpr Item end_on_level(Item corner, int level) noexcept { return (corner >> (Dim - 1 - level)) & 1U; }
 
-    void build_local_map(std::span<const AxisEntry<Real>> deepest,
-                         const std::vector<std::uint8_t>& oversized, GlobalLocalMap& map) {
+    void build_local_map(std::span<const AxisEntry<Real>> deepest, const std::vector<std::uint8_t>& oversized,
+                         GlobalLocalMap& map) {
         present_min_.clear();
         for (const auto& entry : deepest) {
             const Item slot = slot_of_corner(entry.item);
@@ -82,7 +80,8 @@ private:
             if (local == present_min_.size()) present_min_.push_back(0);
             std::uint8_t min_ends = 0;
             for (int level = 0; level < Dim; ++level) {
-                if (end_on_level(entry.item, level) == 0) min_ends = static_cast<std::uint8_t>(min_ends | (1U << level));
+                if (end_on_level(entry.item, level) == 0)
+                    min_ends = static_cast<std::uint8_t>(min_ends | (1U << level));
             }
             present_min_[local] = static_cast<std::uint8_t>(present_min_[local] | min_ends);
         }
@@ -91,8 +90,7 @@ private:
     /// One sweep over a cell's list on the axis of `level`; `overlap(a, b)` for every pair of
     /// local boxes whose intervals on that axis overlap, each pair once.
     template <class CornerAt, class Overlap>
-    void sweep(std::size_t count, CornerAt corner_at, int level, const GlobalLocalMap& map,
-               Overlap&& overlap) {
+    void sweep(std::size_t count, CornerAt corner_at, int level, const GlobalLocalMap& map, Overlap&& overlap) {
         const std::size_t m = map.size();
         open_.assign(m, kNotYet);
         position_.resize(m);
@@ -123,40 +121,41 @@ private:
     }
 
     template <class Report>
-    void check_with_flag_matrix(const CellLists& cell, const GlobalLocalMap& map,
-                                const MaskArray& mask, Report& report) {
+    void check_with_flag_matrix(const CellLists& cell, const GlobalLocalMap& map, const MaskArray& mask,
+                                Report& report) {
         const std::size_t m = map.size();
         flags_.assign(m * m, 0);
         for (int level = 0; level + 1 < Dim; ++level) {
             const auto list = cell.upper[static_cast<std::size_t>(level)];
             const auto bit = static_cast<std::uint8_t>(1U << level);
-            sweep(list.size(), [&](std::size_t i) { return list[i]; }, level, map,
-                  [&](std::uint32_t a, std::uint32_t b) {
-                      flags_[std::min(a, b) * m + std::max(a, b)] |= bit;
-                  });
+            sweep(
+                list.size(), [&](std::size_t i) { return list[i]; }, level, map,
+                [&](std::uint32_t a, std::uint32_t b) { flags_[std::min(a, b) * m + std::max(a, b)] |= bit; });
         }
         constexpr auto deepest_bit = static_cast<std::uint8_t>(1U << (Dim - 1));
-        sweep(cell.deepest.size(), [&](std::size_t i) { return cell.deepest[i].item; }, Dim - 1, map,
-              [&](std::uint32_t a, std::uint32_t b) {
-                  std::uint8_t& flag = flags_[std::min(a, b) * m + std::max(a, b)];
-                  flag = static_cast<std::uint8_t>(flag | deepest_bit);
-                  if (flag != kAllAxes) return;
-                  const std::uint32_t slot_a = map.global(a);
-                  const std::uint32_t slot_b = map.global(b);
-                  if (!mask.already_checked(slot_a, slot_b)) report(slot_a, slot_b);
-              });
+        sweep(
+            cell.deepest.size(), [&](std::size_t i) { return cell.deepest[i].item; }, Dim - 1, map,
+            [&](std::uint32_t a, std::uint32_t b) {
+                std::uint8_t& flag = flags_[std::min(a, b) * m + std::max(a, b)];
+                flag = static_cast<std::uint8_t>(flag | deepest_bit);
+                if (flag != kAllAxes) return;
+                const std::uint32_t slot_a = map.global(a);
+                const std::uint32_t slot_b = map.global(b);
+                if (!mask.already_checked(slot_a, slot_b)) report(slot_a, slot_b);
+            });
     }
 
     template <class Report>
     void check_with_direct_tests(const CellLists& cell, std::span<const Box<Real, Dim>> boxes,
                                  const GlobalLocalMap& map, const MaskArray& mask, Report& report) {
-        sweep(cell.deepest.size(), [&](std::size_t i) { return cell.deepest[i].item; }, Dim - 1, map,
-              [&](std::uint32_t a, std::uint32_t b) {
-                  const std::uint32_t slot_a = map.global(a);
-                  const std::uint32_t slot_b = map.global(b);
-                  if (mask.already_checked(slot_a, slot_b)) return;
-                  if (overlaps(boxes[slot_a], boxes[slot_b])) report(slot_a, slot_b);
-              });
+        sweep(
+            cell.deepest.size(), [&](std::size_t i) { return cell.deepest[i].item; }, Dim - 1, map,
+            [&](std::uint32_t a, std::uint32_t b) {
+                const std::uint32_t slot_a = map.global(a);
+                const std::uint32_t slot_b = map.global(b);
+                if (mask.already_checked(slot_a, slot_b)) return;
+                if (overlaps(boxes[slot_a], boxes[slot_b])) report(slot_a, slot_b);
+            });
     }
 
     static constexpr std::uint8_t kNotYet = 0;

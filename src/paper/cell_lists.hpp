@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Steps 9-11 of the paper's Section 3 (its expressions (10) and (11)): an upper list, sorted on
 // its own axis, is regrouped by cell. Each corner lies in exactly one cell (`cell_of`, the
@@ -19,9 +20,9 @@ namespace smb::detail {
 /// 2^`corners_shift` consecutive corner ids (item << shift ...). `cell_begin` (cells + 1
 /// offsets) says where each cell's part starts in `out`.
 template <class ItemRange>
-void regroup_by_cell(const ItemRange& upper_items, int corners_shift,
-                     std::span<const SegmentId> cell_of, std::span<const std::uint32_t> cell_begin,
-                     std::vector<Item>& out, std::vector<std::uint32_t>& cursor) {
+void regroup_by_cell(const ItemRange& upper_items, int corners_shift, std::span<const SegmentId> cell_of,
+                     std::span<const std::uint32_t> cell_begin, std::vector<Item>& out,
+                     std::vector<std::uint32_t>& cursor) {
     const std::size_t cells = cell_begin.size() - 1;
     out.resize(cell_begin[cells]);
     cursor.assign(cell_begin.begin(), cell_begin.begin() + static_cast<std::ptrdiff_t>(cells));
@@ -43,8 +44,12 @@ public:
     public:
         explicit iterator(const AxisEntry<Real>* at) : at_(at) {}
         Item operator*() const noexcept { return at_->item; }
-        iterator& operator++() noexcept { ++at_; return *this; }
+        iterator& operator++() noexcept {
+            ++at_;
+            return *this;
+        }
         bool operator!=(const iterator& other) const noexcept { return at_ != other.at_; }
+
     private:
         const AxisEntry<Real>* at_;
     };

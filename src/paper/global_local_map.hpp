@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The global-local map of the paper's Section 2.4 (7): inside one cell, each box gets a small
 // local number (order of first appearance in the cell's list of the deepest axis), so that the

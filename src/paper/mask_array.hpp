@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The mask array of the paper's Section 2.4 (8), expression (13): one byte per box, one bit per
 // level of cut. Cells are checked in order (slab, column, cell). Bit l of a box is set once the

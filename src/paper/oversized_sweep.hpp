@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Boxes that span more than two segments on some level (the paper's Fig. 5) would be missed by
 // the cell check: the middle segment does not hold them. The paper avoids them by never cutting
@@ -20,7 +21,10 @@ namespace smb::detail {
 
 class OpenSet {
 public:
-    void reset(std::size_t boxes) { position_.assign(boxes, kNone); members_.clear(); }
+    void reset(std::size_t boxes) {
+        position_.assign(boxes, kNone);
+        members_.clear();
+    }
     void add(std::uint32_t box) {
         position_[box] = static_cast<std::uint32_t>(members_.size());
         members_.push_back(box);

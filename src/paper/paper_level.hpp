@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One level of the paper's cut: its persistent list (Y1, X12 in 2D; Z1, Y12, X123 in 3D), sorted
 // by DIS within each section, and the per-step arrays derived from it: the axial cut of every
@@ -20,10 +21,10 @@ template <std::floating_point Real>
 struct PaperLevel {
     using Entry = AxisEntry<Real>;
 
-    std::vector<Entry> list;                  // grouped by section, sorted within each
-    std::vector<std::uint32_t> section_begin; // offsets of the sections in `list`
-    std::vector<std::uint32_t> segment_begin; // offsets of the segments (after the cut)
-    std::vector<SegmentId> segment_of;        // index array: segment of every item id
+    std::vector<Entry> list;                   // grouped by section, sorted within each
+    std::vector<std::uint32_t> section_begin;  // offsets of the sections in `list`
+    std::vector<std::uint32_t> segment_begin;  // offsets of the segments (after the cut)
+    std::vector<SegmentId> segment_of;         // index array: segment of every item id
     DisController dis;
 
     /// Renumbers the items after BoxStore::compact() dropped removed slots, keeping the list's

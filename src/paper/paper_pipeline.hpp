@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The paper's own pipeline (its Sections 2.4 and 3), chosen by WorldSettings::pipeline =
 // Pipeline::paper_lists. It keeps the paper's data structures (corner lists sorted by DIS on
@@ -15,10 +16,10 @@
 #include <vector>
 
 #include "core/assert.hpp"
-#include "paper/axial_cut.hpp"
-#include "paper/axis_entry.hpp"
 #include "core/box_store.hpp"
 #include "core/stopwatch.hpp"
+#include "paper/axial_cut.hpp"
+#include "paper/axis_entry.hpp"
 #include "paper/cell_check.hpp"
 #include "paper/cell_lists.hpp"
 #include "paper/global_local_map.hpp"
@@ -83,8 +84,8 @@ private:
     CellChecker<Real, Dim> checker_;
     OversizedSweep<Real, Dim> oversized_sweep_;
 
-    std::size_t listed_ = 0;   // slots [0, listed_) are in the lists; later ones arrived since
-    SegmentId cuts_ = 0;       // segments per section on every level
+    std::size_t listed_ = 0;  // slots [0, listed_) are in the lists; later ones arrived since
+    SegmentId cuts_ = 0;      // segments per section on every level
 };
 
 template <std::floating_point Real, int Dim>
@@ -105,8 +106,8 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
                 if (!arrivals_.empty()) {
                     std::sort(arrivals_.begin(), arrivals_.end(), EntryLess{});
                     spare_.resize(level.list.size() + arrivals_.size());
-                    std::merge(level.list.begin(), level.list.end(), arrivals_.begin(),
-                               arrivals_.end(), spare_.begin(), EntryLess{});
+                    std::merge(level.list.begin(), level.list.end(), arrivals_.begin(), arrivals_.end(), spare_.begin(),
+                               EntryLess{});
                     level.list.swap(spare_);
                 }
                 level.section_begin.assign({0U, static_cast<std::uint32_t>(level.list.size())});
@@ -115,8 +116,8 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
                 const Level& parent = levels_[depth - 1];
                 std::vector<std::uint32_t> new_begin(parent.segment_begin.size());
                 for (std::size_t j = 0; j < new_begin.size(); ++j) new_begin[j] = 2 * parent.segment_begin[j];
-                regroup_by_parent_segment<Real>(level.list, level.section_begin, arrivals_,
-                                                parent.segment_of, new_begin, spare_, regroup_);
+                regroup_by_parent_segment<Real>(level.list, level.section_begin, arrivals_, parent.segment_of,
+                                                new_begin, spare_, regroup_);
                 level.list.swap(spare_);
                 level.section_begin.swap(new_begin);
             }
@@ -168,8 +169,8 @@ void PaperPipeline<Real, Dim>::fold_removals(const SlotRenumbering& renumbering)
 /// and turns every item singular for one step.
 template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::choose_cuts() {
-    const double cells = static_cast<double>(store_->slot_count()) /
-                         static_cast<double>(settings_->target_cell_population);
+    const double cells =
+        static_cast<double>(store_->slot_count()) / static_cast<double>(settings_->target_cell_population);
     const double ideal = std::max(1.0, std::pow(cells, 1.0 / Dim));
     const double current = static_cast<double>(cuts_);
     if (cuts_ == 0 || ideal > 1.25 * current || ideal < 0.8 * current) {
@@ -254,9 +255,8 @@ template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::build_cell_lists() {
     const Level& deepest = levels_[Dim - 1];
     for (int depth = 0; depth + 1 < Dim; ++depth) {
-        regroup_by_cell(ItemsOf<Real>(levels_[depth].list), Dim - 1 - depth, deepest.segment_of,
-                        deepest.segment_begin, cell_lists_[static_cast<std::size_t>(depth)],
-                        cell_cursor_);
+        regroup_by_cell(ItemsOf<Real>(levels_[depth].list), Dim - 1 - depth, deepest.segment_of, deepest.segment_begin,
+                        cell_lists_[static_cast<std::size_t>(depth)], cell_cursor_);
     }
 }
 
@@ -283,8 +283,8 @@ void PaperPipeline<Real, Dim>::check_cells(Report& report) {
         const std::size_t size = cell_begin[cell + 1] - first;
         if (size != 0) {
             for (int depth = 0; depth + 1 < Dim; ++depth) {
-                lists.upper[static_cast<std::size_t>(depth)] = std::span<const Item>(
-                    cell_lists_[static_cast<std::size_t>(depth)].data() + first, size);
+                lists.upper[static_cast<std::size_t>(depth)] =
+                    std::span<const Item>(cell_lists_[static_cast<std::size_t>(depth)].data() + first, size);
             }
             lists.deepest = std::span<const Entry>(deepest.list.data() + first, size);
             checker_.check(lists, oversized_, store_->boxes(), map_, mask_, report);
@@ -324,8 +324,7 @@ void PaperPipeline<Real, Dim>::check_invariants() const {
                     SMB_ASSERT(!entry_less(entry, level.list[i - 1]), "section is sorted");
                 }
                 if (depth > 0) {
-                    SMB_ASSERT(levels_[depth - 1].segment_of[entry.item >> 1] == j,
-                               "item is in its parent's section");
+                    SMB_ASSERT(levels_[depth - 1].segment_of[entry.item >> 1] == j, "item is in its parent's section");
                 }
             }
         }

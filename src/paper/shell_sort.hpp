@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The diminishing increment sort (DIS) of the paper's Section 2.2: Shell's sort with the
 // increments 2^k - 1 (..., 15, 7, 3, 1). Between two steps a persistent list is almost sorted,
@@ -33,8 +34,7 @@ struct DisWork {
 /// One insertion-sort pass over the elements `gap` apart. Returns false when it has made more
 /// than `budget` shifts; the list is then still a permutation of its items, only not sorted.
 template <std::floating_point Real>
-bool gapped_insertion_pass(std::span<AxisEntry<Real>> list, std::size_t gap, std::size_t budget,
-                           std::size_t& moves) {
+bool gapped_insertion_pass(std::span<AxisEntry<Real>> list, std::size_t gap, std::size_t budget, std::size_t& moves) {
     const std::size_t n = list.size();
     for (std::size_t i = gap; i < n; ++i) {
         if (!entry_less(list[i], list[i - gap])) continue;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The regrouping of the paper's Section 2.4 (3) and steps 4-7 of its Section 3: a list of level
 // l stays grouped by the segment its parent item fell in on level l - 1. From one step to the
@@ -26,10 +27,10 @@ namespace smb::detail {
 /// nothing: the paper's stack array (one stack per destination section) and its pointers.
 template <std::floating_point Real>
 struct RegroupScratch {
-    std::vector<AxisEntry<Real>> singular;         // singular items in arrival order
-    std::vector<SegmentId> singular_section;       // their destination sections
-    std::vector<AxisEntry<Real>> stacks;           // the stack array, grouped by section
-    std::vector<std::uint32_t> stack_begin;        // stack pointers
+    std::vector<AxisEntry<Real>> singular;    // singular items in arrival order
+    std::vector<SegmentId> singular_section;  // their destination sections
+    std::vector<AxisEntry<Real>> stacks;      // the stack array, grouped by section
+    std::vector<std::uint32_t> stack_begin;   // stack pointers
 
     template <class Trim>
     void trim(Trim&& trim_buffer) {
@@ -39,8 +40,7 @@ struct RegroupScratch {
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return singular.capacity() * sizeof(AxisEntry<Real>) +
-               singular_section.capacity() * sizeof(SegmentId) +
+        return singular.capacity() * sizeof(AxisEntry<Real>) + singular_section.capacity() * sizeof(SegmentId) +
                stacks.capacity() * sizeof(AxisEntry<Real>) + stack_begin.capacity() * sizeof(std::uint32_t);
     }
 };
@@ -49,12 +49,10 @@ struct RegroupScratch {
 /// the section of each item's parent, `parent_segment[item >> 1]`. `new_section_begin` (size
 /// sections + 1) gives the regrouped offsets. The result goes to `out`.
 template <std::floating_point Real>
-void regroup_by_parent_segment(std::span<const AxisEntry<Real>> list,
-                               std::span<const std::uint32_t> old_section_begin,
-                               std::span<const AxisEntry<Real>> arrivals,
-                               std::span<const SegmentId> parent_segment,
-                               std::span<const std::uint32_t> new_section_begin,
-                               std::vector<AxisEntry<Real>>& out, RegroupScratch<Real>& scratch) {
+void regroup_by_parent_segment(std::span<const AxisEntry<Real>> list, std::span<const std::uint32_t> old_section_begin,
+                               std::span<const AxisEntry<Real>> arrivals, std::span<const SegmentId> parent_segment,
+                               std::span<const std::uint32_t> new_section_begin, std::vector<AxisEntry<Real>>& out,
+                               RegroupScratch<Real>& scratch) {
     const std::size_t new_sections = new_section_begin.size() - 1;
     const std::size_t old_sections = old_section_begin.empty() ? 0 : old_section_begin.size() - 1;
     auto& singular = scratch.singular;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The skin list's candidates: the pairs of positions whose fat boxes overlap, each once, kept
 // from one detection to the next, and the pass that tests them all on the held boxes. A dropped
@@ -125,9 +126,8 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes = candidates_.capacity() * sizeof(Candidate);
-        bytes += workers_.bytes_held([](const Worker& worker) {
-            return worker.hits.capacity() * sizeof(Candidate) + worker.sure.capacity();
-        });
+        bytes += workers_.bytes_held(
+            [](const Worker& worker) { return worker.hits.capacity() * sizeof(Candidate) + worker.sure.capacity(); });
         for (const Block& block : blocks_) bytes += block.pairs.capacity() * sizeof(Pair);
         return bytes + serial_.pairs.capacity() * sizeof(Pair);
     }
@@ -193,7 +193,8 @@ private:
             std::uint32_t keep = 1;
             if (dropping) {
                 keep = static_cast<std::uint32_t>(~((dirty[candidate.a >> 6] >> (candidate.a & 63)) |
-                                                    (dirty[candidate.b >> 6] >> (candidate.b & 63))) & 1U);
+                                                    (dirty[candidate.b >> 6] >> (candidate.b & 63))) &
+                                                  1U);
                 if (keep == 0 && candidate.a != candidate.b) {
                     candidates[i] = Candidate{candidate.a, candidate.a};
                     ++out.tombstones;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Whether the skin list pays for itself. A life: the detections the candidates served between two
 // rebuilds. A rebuild costs more than a detection without a skin, so two short lives running

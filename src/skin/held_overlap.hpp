@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The skin list's test of a pair of held boxes: whether they overlap, and whether they overlap by
 // enough to prove that the input boxes they hold overlap too (held_sure_margin(), held_box.hpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The skin list (a Verlet list, in the words of molecular dynamics and DEM codes): each box is
 // held inside a fat box, grown by the skin on every side, and the pairs of fat boxes that overlap
@@ -75,8 +76,8 @@ public:
             clear();
             return false;
         }
-        const bool stale = !built_ || origin != origin_ || skin != skin_ || 4 * n > 5 * rebuilt_boxes_ ||
-                           5 * n < 4 * rebuilt_boxes_;
+        const bool stale =
+            !built_ || origin != origin_ || skin != skin_ || 4 * n > 5 * rebuilt_boxes_ || 5 * n < 4 * rebuilt_boxes_;
         try {
             const Outcome outcome = stale ? Outcome::rebuild : step(report, stats);
             if (outcome == Outcome::hopeless) {
@@ -118,8 +119,8 @@ public:
                             state_.capacity() + gone_.capacity() * sizeof(Position) +
                             dirty_.capacity() * sizeof(std::uint64_t) + candidates_.bytes_held();
         return bytes + scans_.bytes_held([](const Scan& scan) {
-                   return (scan.fresh.capacity() + scan.gone.capacity()) * sizeof(Position);
-               });
+            return (scan.fresh.capacity() + scan.gone.capacity()) * sizeof(Position);
+        });
     }
 
 private:
@@ -161,7 +162,8 @@ private:
         const std::size_t n = input_.size();
         // held_ serves as the fat boxes by slot until the positions are known.
         resize_with_slack(held_, n + 1);  // and one box of padding for overlap_bit()
-        for (std::size_t slot = 0; slot < n; ++slot) held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_));
+        for (std::size_t slot = 0; slot < n; ++slot)
+            held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_));
         cells_.forget_slots_from(n);
         typename Candidates::Collector collect = candidates_.rebuild(candidate_cap(n));
         try {
@@ -373,7 +375,7 @@ private:
     bool exhausted_ = false;  // step aside at the next detect()
 
     PersistentCutPipeline<float, Dim, float> cells_;  // over the fat boxes of the last rebuild
-    std::vector<Held> fat_;              // per position
+    std::vector<Held> fat_;                           // per position
     std::vector<Held> held_;             // per position: this detection's boxes, held as floats; one more of padding
     std::vector<Slot> slot_of_;          // per position: the caller's index
     std::vector<Position> position_of_;  // per slot ever seen since the rebuild

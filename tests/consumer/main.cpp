@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A consumer of smb: two boxes that share a face must be reported as one overlapping pair, by a
 // World (under ids), by a Detector (over an array, by index; with and without a skin) and by
 // find_overlapping_pairs over a std::vector.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Proves that smb can be consumed two ways: installed into a prefix and found with
 # find_package, and added as a subproject with FetchContent. Run with cmake -P, given
 # SMB_SOURCE_DIR, CONSUMER_DIR and SCRATCH_DIR (wiped first); CMAKE_CXX_COMPILER is optional.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The obviously correct reference every smb test compares against: all pairs, one by one.
 
@@ -16,8 +17,7 @@ namespace smb::test {
 /// Every overlapping pair among `boxes` (box i under `ids[i]`), closed overlap as in
 /// smb::overlaps, each pair once with a < b, sorted by (a, b). O(n^2) on purpose.
 template <std::floating_point Real, int Dim>
-std::vector<Pair> brute_force_pairs(std::span<const BoxId> ids,
-                                    std::span<const Box<Real, Dim>> boxes) {
+std::vector<Pair> brute_force_pairs(std::span<const BoxId> ids, std::span<const Box<Real, Dim>> boxes) {
     if (ids.size() != boxes.size()) throw std::invalid_argument("brute_force_pairs: length mismatch");
     std::vector<Pair> pairs;
     for (std::size_t i = 0; i < boxes.size(); ++i) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The four detector types as GoogleTest type parameters, named float2d ... double3d.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Compares the pairs a detection reported with the expected ones and, when they differ, says
 // exactly how: pairs out of order (a >= b), duplicates, missing and extra pairs, each shown
@@ -54,8 +55,7 @@ inline void show_pairs(std::ostringstream& out, const char* heading, const std::
 
 /// Success when `reported` holds exactly the pairs of `expected` (sorted, a < b), each once,
 /// with a < b, in any order.
-inline ::testing::AssertionResult same_pairs(std::vector<Pair> reported,
-                                             const std::vector<Pair>& expected,
+inline ::testing::AssertionResult same_pairs(std::vector<Pair> reported, const std::vector<Pair>& expected,
                                              const BoxDescriber& describe_box = {}) {
     std::vector<Pair> misordered;
     for (const Pair& p : reported) {
@@ -69,16 +69,13 @@ inline ::testing::AssertionResult same_pairs(std::vector<Pair> reported,
     const auto unique_end = std::unique(reported.begin(), reported.end());
     std::vector<Pair> missing;
     std::vector<Pair> extra;
-    std::set_difference(expected.begin(), expected.end(), reported.begin(), unique_end,
-                        std::back_inserter(missing));
-    std::set_difference(reported.begin(), unique_end, expected.begin(), expected.end(),
-                        std::back_inserter(extra));
+    std::set_difference(expected.begin(), expected.end(), reported.begin(), unique_end, std::back_inserter(missing));
+    std::set_difference(reported.begin(), unique_end, expected.begin(), expected.end(), std::back_inserter(extra));
     if (misordered.empty() && duplicates.empty() && missing.empty() && extra.empty())
         return ::testing::AssertionSuccess();
 
     std::ostringstream out;
-    out << "reported " << (unique_end - reported.begin()) << " distinct pairs, expected "
-        << expected.size();
+    out << "reported " << (unique_end - reported.begin()) << " distinct pairs, expected " << expected.size();
     detail::show_pairs(out, "pairs with a >= b", misordered, describe_box);
     detail::show_pairs(out, "duplicated pairs", duplicates, describe_box);
     detail::show_pairs(out, "missing pairs", missing, describe_box);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Seeded random boxes for the tests. Every generator takes the engine explicitly so that a
 // failing test can print its seed and be replayed exactly.
@@ -24,9 +25,7 @@ inline std::size_t uniform_index(Random& random, std::size_t count) {
     return std::uniform_int_distribution<std::size_t>(0, count - 1)(random);
 }
 
-inline bool chance(Random& random, double probability) {
-    return std::bernoulli_distribution(probability)(random);
-}
+inline bool chance(Random& random, double probability) { return std::bernoulli_distribution(probability)(random); }
 
 /// A size drawn so that its logarithm is uniform: sizes spread evenly over magnitudes.
 inline double log_uniform(Random& random, double lo, double hi) {
@@ -36,8 +35,7 @@ inline double log_uniform(Random& random, double lo, double hi) {
 /// The box with the given centre and half extents, rounded to Real. Rounding is monotone,
 /// so min <= max survives it.
 template <std::floating_point Real, int Dim>
-Box<Real, Dim> box_around(const std::array<double, Dim>& centre,
-                          const std::array<double, Dim>& half_extent) {
+Box<Real, Dim> box_around(const std::array<double, Dim>& centre, const std::array<double, Dim>& half_extent) {
     Box<Real, Dim> box;
     for (int k = 0; k < Dim; ++k) {
         box.min[k] = static_cast<Real>(centre[k] - half_extent[k]);
@@ -61,8 +59,7 @@ Box<Real, Dim> random_box(Random& random, double lo, double hi, double min_side,
 /// The box moved by up to `max_shift` and with each side changed by up to `max_growth`
 /// (never below zero), as in the paper's artificial dynamic environment (its Section 4).
 template <std::floating_point Real, int Dim>
-Box<Real, Dim> perturbed(Random& random, const Box<Real, Dim>& box, double max_shift,
-                         double max_growth) {
+Box<Real, Dim> perturbed(Random& random, const Box<Real, Dim>& box, double max_shift, double max_growth) {
     std::array<double, Dim> centre{};
     std::array<double, Dim> half{};
     for (int k = 0; k < Dim; ++k) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A plain map of id -> box that mirrors every call a test makes on an smb::World, and the
 // checks that the world agrees with it: same ids, same boxes, same pairs as brute force.
@@ -57,8 +58,7 @@ public:
     [[nodiscard]] BoxDescriber describer() const {
         return [this](BoxId id) {
             const auto it = boxes_.find(id);
-            return it == boxes_.end() ? std::string("<not in the reference>")
-                                      : describe(it->second);
+            return it == boxes_.end() ? std::string("<not in the reference>") : describe(it->second);
         };
     }
 
@@ -68,8 +68,7 @@ private:
 
 /// Success when `world` holds exactly the ids and boxes of `reference`.
 template <std::floating_point Real, int Dim>
-::testing::AssertionResult same_contents(const World<Real, Dim>& world,
-                                         const ReferenceWorld<Real, Dim>& reference) {
+::testing::AssertionResult same_contents(const World<Real, Dim>& world, const ReferenceWorld<Real, Dim>& reference) {
     if (world.size() != reference.size()) {
         return ::testing::AssertionFailure()
                << "world holds " << world.size() << " boxes, reference " << reference.size();
@@ -78,8 +77,8 @@ template <std::floating_point Real, int Dim>
         if (!world.contains(id)) return ::testing::AssertionFailure() << "world lacks id " << id;
         const auto stored = world.box(id);
         if (!(stored == box)) {
-            return ::testing::AssertionFailure() << "box " << id << " is " << describe(stored)
-                                                 << ", expected " << describe(box);
+            return ::testing::AssertionFailure()
+                   << "box " << id << " is " << describe(stored) << ", expected " << describe(box);
         }
     }
     return ::testing::AssertionSuccess();
@@ -87,16 +86,14 @@ template <std::floating_point Real, int Dim>
 
 /// Detects once and checks the pairs and the statistics against the reference.
 template <std::floating_point Real, int Dim>
-::testing::AssertionResult detects_like(World<Real, Dim>& world,
-                                        const ReferenceWorld<Real, Dim>& reference) {
+::testing::AssertionResult detects_like(World<Real, Dim>& world, const ReferenceWorld<Real, Dim>& reference) {
     std::vector<Pair> pairs;
     const DetectStats stats = world.detect(pairs);
     auto result = same_pairs(pairs, reference.pairs(), reference.describer());
     if (!result) return result;
     if (stats.pairs != pairs.size()) {
         return ::testing::AssertionFailure()
-               << "DetectStats::pairs is " << stats.pairs << " but " << pairs.size()
-               << " pairs were reported";
+               << "DetectStats::pairs is " << stats.pairs << " but " << pairs.size() << " pairs were reported";
     }
     if (stats.boxes != reference.size()) {
         return ::testing::AssertionFailure()
@@ -107,8 +104,7 @@ template <std::floating_point Real, int Dim>
 
 /// Both checks above, the contents first.
 template <std::floating_point Real, int Dim>
-::testing::AssertionResult agrees_with(World<Real, Dim>& world,
-                                       const ReferenceWorld<Real, Dim>& reference) {
+::testing::AssertionResult agrees_with(World<Real, Dim>& world, const ReferenceWorld<Real, Dim>& reference) {
     auto contents = same_contents(world, reference);
     if (!contents) return contents;
     return detects_like(world, reference);

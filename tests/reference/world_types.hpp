@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The four instantiations of smb::World that typed tests run over, with readable names.
 
@@ -42,8 +43,6 @@ inline constexpr std::size_t kScaleDivisor = 4;
 inline constexpr std::size_t kScaleDivisor = 1;
 #endif
 
-inline constexpr std::size_t scaled(std::size_t count) {
-    return count / kScaleDivisor > 0 ? count / kScaleDivisor : 1;
-}
+inline constexpr std::size_t scaled(std::size_t count) { return count / kScaleDivisor > 0 ? count / kScaleDivisor : 1; }
 
 }  // namespace smb::test

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A count and its noun for messages: "1 frame", "0 frames", "2 boxes". The plural is used for
 // every count but exactly one.
@@ -11,8 +12,7 @@
 namespace smb::cli {
 
 /// `count` and `singular`, or `plural` unless `count` is 1.
-[[nodiscard]] inline std::string counted(std::uint64_t count, std::string_view singular,
-                                         std::string_view plural) {
+[[nodiscard]] inline std::string counted(std::uint64_t count, std::string_view singular, std::string_view plural) {
     return fmt::format("{} {}", count, count == 1 ? singular : plural);
 }
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "csv_fields.hpp"
 
 #include <cerrno>
@@ -62,8 +63,7 @@ std::uint64_t parse_unsigned(std::string_view field, std::string_view column) {
     std::uint64_t value = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (error == std::errc::result_out_of_range) fail(column, text, "does not fit in 64 bits");
-    if (error != std::errc{} || end != text.data() + text.size())
-        fail(column, text, "is not an unsigned integer");
+    if (error != std::errc{} || end != text.data() + text.size()) fail(column, text, "is not an unsigned integer");
     return value;
 }
 
@@ -74,12 +74,11 @@ double parse_finite_double(std::string_view field, std::string_view column) {
     std::string_view digits = text;
     if (digits.front() == '+') {
         digits.remove_prefix(1);
-        if (digits.empty() || digits.front() == '+' || digits.front() == '-')
-            fail(column, text, "is not a number");
+        if (digits.empty() || digits.front() == '+' || digits.front() == '-') fail(column, text, "is not a number");
     }
     double value = 0;
-    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value,
-                                              std::chars_format::general);
+    const auto [end, error] =
+        std::from_chars(digits.data(), digits.data() + digits.size(), value, std::chars_format::general);
     if (error == std::errc::invalid_argument || end != digits.data() + digits.size())
         fail(column, text, "is not a number");
     if (error == std::errc::result_out_of_range) {
@@ -88,8 +87,7 @@ double parse_finite_double(std::string_view field, std::string_view column) {
         const std::string copy(digits);
         errno = 0;
         value = std::strtod(copy.c_str(), nullptr);
-        if (std::isinf(value) || std::abs(value) == HUGE_VAL)
-            fail(column, text, "is too large for a double");
+        if (std::isinf(value) || std::abs(value) == HUGE_VAL) fail(column, text, "is too large for a double");
     }
     if (!std::isfinite(value)) fail(column, text, "is not finite");
     return value;

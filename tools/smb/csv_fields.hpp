@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Field-level parsing shared by the scene and pair CSV readers. Problems are thrown as
 // std::invalid_argument with a message naming the column; the readers add file and line.

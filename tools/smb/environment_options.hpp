@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The options that describe the paper's dynamic environment, shared by `smb generate` and
 // `smb run`.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "file_streams.hpp"
 
 #include <sys/stat.h>
@@ -41,15 +42,12 @@ std::string final_target(const std::string& path) {
     std::filesystem::path current(path);
     for (int links = 0;; ++links) {
         struct stat status {};
-        if (::lstat(current.c_str(), &status) != 0 || !S_ISLNK(status.st_mode))
-            return current.string();
-        if (links == most_links)
-            throw std::runtime_error("cannot write '" + path + "': too many symbolic links");
+        if (::lstat(current.c_str(), &status) != 0 || !S_ISLNK(status.st_mode)) return current.string();
+        if (links == most_links) throw std::runtime_error("cannot write '" + path + "': too many symbolic links");
         std::error_code error;
         const std::filesystem::path link = std::filesystem::read_symlink(current, error);
         if (error)
-            throw std::runtime_error("cannot read the symbolic link '" + current.string() +
-                                     "': " + error.message());
+            throw std::runtime_error("cannot read the symbolic link '" + current.string() + "': " + error.message());
         current = link.is_absolute() ? link : current.parent_path() / link;
     }
 }
@@ -80,8 +78,7 @@ OutputFile::OutputFile(const std::string& path) : path_(path) {
     target_ = final_target(path);
     struct stat status {};
     const bool exists = ::stat(target_.c_str(), &status) == 0;
-    if (exists && S_ISDIR(status.st_mode))
-        throw std::runtime_error("cannot write '" + path + "': it is a folder");
+    if (exists && S_ISDIR(status.st_mode)) throw std::runtime_error("cannot write '" + path + "': it is a folder");
     if (exists && !S_ISREG(status.st_mode)) {
         // A FIFO or a device cannot be replaced by a file without breaking whoever uses it (a
         // reader at the other end, /dev/null for every other program): write into it.
@@ -94,8 +91,7 @@ OutputFile::OutputFile(const std::string& path) : path_(path) {
     // The temporary lives beside the target so that the final rename stays on one file system
     // and is atomic.
     const std::filesystem::path target(target_);
-    const std::filesystem::path folder =
-        target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+    const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
     std::string hidden_name = ".";  // appended piecewise: GCC 12 misreads "." + string (-Wrestrict)
     hidden_name += target.filename().string();
     hidden_name += ".tmp-XXXXXX";

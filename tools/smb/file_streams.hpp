@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where the tool reads and writes: a path, or "-" for the standard streams.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What changed between two consecutive frames of a scene, in the shape of World's batch calls.
 
@@ -23,8 +24,7 @@ struct FrameChanges {
 /// removed, ids only in `frame` inserted, the rest updated. Both id lists must be sorted, as
 /// SceneReader returns them. Linear time (one merge).
 template <int Dim>
-void diff_frames(std::span<const BoxId> previous_ids, const SceneFrame<Dim>& frame,
-                 FrameChanges<Dim>& changes) {
+void diff_frames(std::span<const BoxId> previous_ids, const SceneFrame<Dim>& frame, FrameChanges<Dim>& changes) {
     changes.removed_ids.clear();
     changes.updated_ids.clear();
     changes.updated_boxes.clear();

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "generate_command.hpp"
 
 #include <fmt/format.h>
@@ -14,8 +15,8 @@ namespace smb::cli {
 namespace {
 
 template <int Dim>
-void write_environment(const EnvironmentOptions& options, std::ostream& out,
-                       std::size_t& final_count, double& cube_side) {
+void write_environment(const EnvironmentOptions& options, std::ostream& out, std::size_t& final_count,
+                       double& cube_side) {
     workload::DynamicEnvironment<Dim> environment(options.params());
     io::SceneWriter writer(out, Dim);
     for (std::size_t frame = 0; frame < options.steps; ++frame) {
@@ -59,10 +60,9 @@ int GenerateCommand::run() const {
     }
     output.commit();
     if (!output.is_standard_output()) {
-        std::cerr << fmt::format(
-            "smb generate: {} of {}D boxes, N {} -> {}, cube side {:.6g}, written to {}\n",
-            counted(environment_.steps, "frame"), environment_.dimension, environment_.box_count,
-            final_count, cube_side, output_);
+        std::cerr << fmt::format("smb generate: {} of {}D boxes, N {} -> {}, cube side {:.6g}, written to {}\n",
+                                 counted(environment_.steps, "frame"), environment_.dimension, environment_.box_count,
+                                 final_count, cube_side, output_);
     }
     return 0;
 }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "line_reader.hpp"
 
 #include <cstring>
@@ -13,8 +14,7 @@ std::optional<std::string_view> LineReader::next() {
     for (;;) {
         const void* newline = std::memchr(buffer_.data() + searched, '\n', end_ - searched);
         if (newline != nullptr) {
-            const auto stop =
-                static_cast<std::size_t>(static_cast<const char*>(newline) - buffer_.data());
+            const auto stop = static_cast<std::size_t>(static_cast<const char*>(newline) - buffer_.data());
             std::string_view line(buffer_.data() + begin_, stop - begin_);
             begin_ = stop + 1;
             ++line_number_;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smb: the command-line face of the library. Subcommands: pairs, generate, run.
 // Exit statuses: exit_status.hpp.
 
@@ -66,8 +67,7 @@ int main(int argc, char** argv) {
 
     if (argc < 2) return argument_error(app, "no command given; the commands are " + command_names(app));
     if (const std::string unknown = unknown_command(app, argc, argv); !unknown.empty()) {
-        return argument_error(app, "unknown command '" + unknown + "'; the commands are " +
-                                       command_names(app));
+        return argument_error(app, "unknown command '" + unknown + "'; the commands are " + command_names(app));
     }
     int status = exit_status::failure;
     try {

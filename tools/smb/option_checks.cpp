@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "option_checks.hpp"
 
 #include <fmt/format.h>
@@ -26,8 +27,7 @@ std::optional<double> number_in(const std::string& text) {
 /// A validator that accepts a number for which `accepts` holds and otherwise says "must be
 /// <requirement>, not <the text as given>". The bounds print in fmt's shortest form;
 /// `description` follows the value's type in --help.
-CLI::Validator number_check(std::string requirement, std::string description,
-                            std::function<bool(double)> accepts) {
+CLI::Validator number_check(std::string requirement, std::string description, std::function<bool(double)> accepts) {
     return CLI::Validator(
         [requirement, accepts](std::string& text) -> std::string {
             const auto value = number_in(text);
@@ -42,26 +42,22 @@ CLI::Validator number_check(std::string requirement, std::string description,
 
 CLI::Validator in_closed_range(double low, double high) {
     const std::string range = fmt::format("in [{}, {}]", low, high);
-    return number_check(range, range,
-                        [low, high](double value) { return low <= value && value <= high; });
+    return number_check(range, range, [low, high](double value) { return low <= value && value <= high; });
 }
 
 CLI::Validator in_half_open_range(double low, double high) {
     const std::string range = fmt::format("in [{}, {})", low, high);
-    return number_check(range, range,
-                        [low, high](double value) { return low <= value && value < high; });
+    return number_check(range, range, [low, high](double value) { return low <= value && value < high; });
 }
 
 CLI::Validator at_least(double low) {
     const std::string requirement = fmt::format("at least {}", low);
-    return number_check(requirement, requirement,
-                        [low](double value) { return value >= low; });
+    return number_check(requirement, requirement, [low](double value) { return value >= low; });
 }
 
 CLI::Validator greater_than(double low) {
     const std::string requirement = fmt::format("greater than {}", low);
-    return number_check(requirement, requirement,
-                        [low](double value) { return value > low; });
+    return number_check(requirement, requirement, [low](double value) { return value > low; });
 }
 
 CLI::Validator not_negative() {

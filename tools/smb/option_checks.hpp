@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Checks of numeric options whose messages name the bound and the value as the user wrote them
 // ("must be at least 1, not 0.1"): CLI11's own Range prints both through std::to_string

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "pair_csv.hpp"
 
 #include <fmt/format.h>
@@ -50,9 +51,8 @@ std::vector<FramePair> read_pair_csv(std::istream& in, const std::string& source
     auto header = lines.next();
     if (!header) throw CsvError(source_name, 1, "empty file: expected the header 'frame,a,b'");
     if (*header != pair_header) {
-        throw CsvError(
-            source_name, 1,
-            "unknown header '" + std::string(header->substr(0, 80)) + "': expected 'frame,a,b'");
+        throw CsvError(source_name, 1,
+                       "unknown header '" + std::string(header->substr(0, 80)) + "': expected 'frame,a,b'");
     }
     std::vector<FramePair> rows;
     std::vector<std::string_view> fields;
@@ -61,8 +61,7 @@ std::vector<FramePair> read_pair_csv(std::istream& in, const std::string& source
         const auto line_number = lines.line_number();
         split_fields(*line, fields);
         if (fields.size() != 3) {
-            throw CsvError(source_name, line_number,
-                           fmt::format("expected 3 fields, found {}", fields.size()));
+            throw CsvError(source_name, line_number, fmt::format("expected 3 fields, found {}", fields.size()));
         }
         FramePair row;
         try {
@@ -73,12 +72,10 @@ std::vector<FramePair> read_pair_csv(std::istream& in, const std::string& source
             throw CsvError(source_name, line_number, problem.what());
         }
         if (row.a >= row.b) {
-            throw CsvError(source_name, line_number,
-                           fmt::format("a {} is not less than b {}", row.a, row.b));
+            throw CsvError(source_name, line_number, fmt::format("a {} is not less than b {}", row.a, row.b));
         }
         if (!rows.empty() && !(rows.back() < row)) {
-            throw CsvError(source_name, line_number,
-                           "rows are not sorted by (frame, a, b) or repeat a pair");
+            throw CsvError(source_name, line_number, "rows are not sorted by (frame, a, b) or repeat a pair");
         }
         rows.push_back(row);
     }

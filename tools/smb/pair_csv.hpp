@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The pair CSV of the smb conventions: header `frame,a,b`, one row per overlapping pair with
 // a < b, rows sorted by (frame, a, b); a frame without contacts has no rows.
@@ -43,7 +44,6 @@ struct FramePair {
 
 /// Reads a whole pair CSV (for tests and comparisons), checking the header, the fields, a < b
 /// and the row order; problems are thrown as CsvError.
-[[nodiscard]] std::vector<FramePair> read_pair_csv(std::istream& in,
-                                                   const std::string& source_name);
+[[nodiscard]] std::vector<FramePair> read_pair_csv(std::istream& in, const std::string& source_name);
 
 }  // namespace smb::io

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "pairs_command.hpp"
 
 #include <fmt/format.h>
@@ -13,8 +14,8 @@
 #include "option_checks.hpp"
 #include "pair_csv.hpp"
 #include "scene_csv.hpp"
-#include "spilling_pair_sorter.hpp"
 #include "smb/world.hpp"
+#include "spilling_pair_sorter.hpp"
 
 namespace smb::cli {
 
@@ -25,8 +26,7 @@ namespace {
 // A frame's pairs stream from the world into a sorter that spills to temporary files past
 // `pairs_in_memory`, so that a frame with billions of pairs costs disk, not memory.
 template <int Dim>
-void write_pairs_of_every_frame(io::SceneReader& reader, std::ostream& out,
-                                std::size_t pairs_in_memory) {
+void write_pairs_of_every_frame(io::SceneReader& reader, std::ostream& out, std::size_t pairs_in_memory) {
     World<double, Dim> world;
     io::SpillingPairSorter sorter(pairs_in_memory);
     io::PairWriter writer(out);
@@ -48,8 +48,7 @@ void write_pairs_of_every_frame(io::SceneReader& reader, std::ostream& out,
         world.insert(changes.inserted_ids, changes.inserted_boxes);
 
         world.detect([&](std::span<const Pair> chunk) { sorter.add(chunk); });
-        sorter.finish(
-            [&](std::span<const Pair> sorted) { writer.write_frame(frame.number, sorted); });
+        sorter.finish([&](std::span<const Pair> sorted) { writer.write_frame(frame.number, sorted); });
 
         previous_ids.swap(frame.ids);
         previous_number = frame.number;
@@ -64,8 +63,7 @@ PairsCommand::PairsCommand(CLI::App& parent)
     : app_(parent.add_subcommand("pairs",
                                  "Find the overlapping pairs of every frame of a scene CSV "
                                  "and write them as a pair CSV")) {
-    app_->add_option("-i,--input", input_, "scene CSV to read ('-' for standard input)")
-        ->capture_default_str();
+    app_->add_option("-i,--input", input_, "scene CSV to read ('-' for standard input)")->capture_default_str();
     app_->add_option("-o,--output", output_,
                      "pair CSV to write ('-' for standard output); a file is replaced only on "
                      "success, a symbolic link's target is written, a FIFO or device is written "

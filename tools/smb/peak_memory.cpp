@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "peak_memory.hpp"
 
 #if defined(__unix__) || defined(__APPLE__)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "progress_bar.hpp"
 
 #include <fmt/format.h>
@@ -33,11 +34,10 @@ void ProgressBar::draw(std::size_t done, double last_step_seconds) {
     const auto filled = total_ == 0 ? bar_width : static_cast<int>(done * bar_width / total_);
     const std::string bar = std::string(static_cast<std::size_t>(filled), '#') +
                             std::string(static_cast<std::size_t>(bar_width - filled), '.');
-    std::fputs(
-        fmt::format("\r[{}] {}/{} {}, last {:.3f} s ", bar, done, total_,
-                    total_ == 1 ? "step" : "steps", last_step_seconds)
-            .c_str(),
-        stderr);
+    std::fputs(fmt::format("\r[{}] {}/{} {}, last {:.3f} s ", bar, done, total_, total_ == 1 ? "step" : "steps",
+                           last_step_seconds)
+                   .c_str(),
+               stderr);
     std::fflush(stderr);
     drawn_ = true;
 }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "run_command.hpp"
 
 #include <algorithm>
@@ -13,10 +14,10 @@
 #include "peak_memory.hpp"
 #include "progress_bar.hpp"
 #include "run_report.hpp"
+#include "smb/detector.hpp"
 #include "smb/workload/reference_grid.hpp"
 #include "smb/workload/swap_remove_mirror.hpp"
 #include "smb/workload/world_sync.hpp"
-#include "smb/detector.hpp"
 #include "smb/world.hpp"
 
 namespace smb::cli {
@@ -25,17 +26,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// Compares one detection (sorted) with the reference and records the outcome.
 template <int Dim>
-void check_step(const workload::DynamicEnvironment<Dim>& environment,
-                const std::vector<Pair>& detected, std::size_t step, CheckRecord& check) {
+void check_step(const workload::DynamicEnvironment<Dim>& environment, const std::vector<Pair>& detected,
+                std::size_t step, CheckRecord& check) {
     const auto start = Clock::now();
-    const std::vector<Pair> expected =
-        workload::grid_pairs<double, Dim>(environment.ids(), environment.boxes());
+    const std::vector<Pair> expected = workload::grid_pairs<double, Dim>(environment.ids(), environment.boxes());
     check.last_reference_seconds = seconds_since(start);
     ++check.steps_checked;
     check.last_checked_step = step;
@@ -45,8 +43,7 @@ void check_step(const workload::DynamicEnvironment<Dim>& environment,
     std::vector<Pair> extra;
     std::set_difference(expected.begin(), expected.end(), detected.begin(), detected.end(),
                         std::back_inserter(missing));
-    std::set_difference(detected.begin(), detected.end(), expected.begin(), expected.end(),
-                        std::back_inserter(extra));
+    std::set_difference(detected.begin(), detected.end(), expected.begin(), expected.end(), std::back_inserter(extra));
     // On sorted ranges set_difference counts multiplicity, so a repeated pair shows up as extra.
     if (check.mismatched_steps++ == 0) {
         check.first_bad_step = step;
@@ -89,15 +86,14 @@ RunCommand::RunCommand(CLI::App& parent)
     auto* check_every = app_->add_option("--check-every", check_every_,
                                          "also check every K-th step against the grid reference "
                                          "(the last step is always checked)")
-                               ->check(not_negative());
+                            ->check(not_negative());
     app_->add_flag("--no-check", no_check_, "skip the reference check")->excludes(check_every);
     app_->add_flag("--json", json_, "print the summary as one JSON object on standard output");
     app_->add_flag("--no-progress", no_progress_, "never draw the progress bar");
 }
 
 int RunCommand::run() const {
-    if (skin_ > 0 && pipeline_ != "detector")
-        throw CLI::ValidationError("--skin", "needs --pipeline detector");
+    if (skin_ > 0 && pipeline_ != "detector") throw CLI::ValidationError("--skin", "needs --pipeline detector");
     return environment_.dimension == 2 ? run_in<2>() : run_in<3>();
 }
 
@@ -129,8 +125,8 @@ int RunCommand::run_in() const {
     run.pipeline = pipeline_;
     run.skin = skin_;
     run.threads = settings.pipeline == Pipeline::paper_lists || !openmp_enabled() ? 1
-                  : threads_ == 0 ? std::thread::hardware_concurrency()
-                                  : threads_;
+                  : threads_ == 0                                                 ? std::thread::hardware_concurrency()
+                                                                                  : threads_;
     run.check.enabled = !no_check_;
 
     const std::size_t steps = environment_.steps;
@@ -151,8 +147,7 @@ int RunCommand::run_in() const {
         start = Clock::now();
         const std::clock_t cpu_start = std::clock();
         record.stats = through_detector ? detector.detect(mirror.boxes(), pairs) : world.detect(pairs);
-        record.detect_cpu_seconds =
-            static_cast<double>(std::clock() - cpu_start) / static_cast<double>(CLOCKS_PER_SEC);
+        record.detect_cpu_seconds = static_cast<double>(std::clock() - cpu_start) / static_cast<double>(CLOCKS_PER_SEC);
         record.detect_seconds = seconds_since(start);
         run.steps.push_back(record);
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "run_report.hpp"
 
 #include <fmt/format.h>
@@ -44,9 +45,7 @@ double median_after_build(const RunRecord& run, const StepQuantity& quantity) {
 }
 
 double bytes_per_box(const RunRecord& run) {
-    return run.final_boxes == 0
-               ? 0.0
-               : static_cast<double>(run.bytes_held) / static_cast<double>(run.final_boxes);
+    return run.final_boxes == 0 ? 0.0 : static_cast<double>(run.bytes_held) / static_cast<double>(run.final_boxes);
 }
 
 std::string duration_text(double seconds) {
@@ -63,12 +62,8 @@ std::string pair_text(const std::optional<Pair>& pair) {
 const StepQuantity detect_time = [](const StepRecord& s) { return s.detect_seconds; };
 const StepQuantity detect_cpu_time = [](const StepRecord& s) { return s.detect_cpu_seconds; };
 const StepQuantity world_update_time = [](const StepRecord& s) { return s.world_update_seconds; };
-const StepQuantity pair_count = [](const StepRecord& s) {
-    return static_cast<double>(s.stats.pairs);
-};
-const StepQuantity box_count = [](const StepRecord& s) {
-    return static_cast<double>(s.stats.boxes);
-};
+const StepQuantity pair_count = [](const StepRecord& s) { return static_cast<double>(s.stats.pairs); };
+const StepQuantity box_count = [](const StepRecord& s) { return static_cast<double>(s.stats.boxes); };
 const StepQuantity update_time = [](const StepRecord& s) { return s.stats.update_seconds; };
 const StepQuantity scan_time = [](const StepRecord& s) { return s.stats.scan_seconds; };
 const StepQuantity containment_time = [](const StepRecord& s) { return s.stats.containment_seconds; };
@@ -92,9 +87,12 @@ struct Phase {
 
 /// Every phase, in the order of a detection: the keys of --json, whatever the pipeline.
 std::vector<Phase> all_phases() {
-    return {{"update", "update", update_time},         {"scan", "scan", scan_time},
-            {"containment", "containment", containment_time}, {"quantile", "quantiles", quantile_time},
-            {"list_sort", "list sort", list_sort_time},   {"cut_regroup", "cut+regroup", cut_time},
+    return {{"update", "update", update_time},
+            {"scan", "scan", scan_time},
+            {"containment", "containment", containment_time},
+            {"quantile", "quantiles", quantile_time},
+            {"list_sort", "list sort", list_sort_time},
+            {"cut_regroup", "cut+regroup", cut_time},
             {"check", "check", check_time}};
 }
 
@@ -137,21 +135,19 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
     out << fmt::format(
         "smb run: {}D, N {} -> {}, E {:g} (cube side {:.4g}), H {:g}, update factor {:g}, {}, "
         "seed {}\n",
-        run.dimension, run.initial_boxes, run.final_boxes, run.packing_density, run.cube_side,
-        run.size_ratio, run.update_factor, counted(run.steps.size(), "step"), run.seed);
+        run.dimension, run.initial_boxes, run.final_boxes, run.packing_density, run.cube_side, run.size_ratio,
+        run.update_factor, counted(run.steps.size(), "step"), run.seed);
     line("pipeline", fmt::format("{}, {} thread{}", run.pipeline, run.threads, run.threads == 1 ? "" : "s"));
     if (!run.steps.empty()) {
         const StepRecord& build = run.steps.front();
-        line("build (step 1)",
-             fmt::format("{} ({})", duration_text(build.detect_seconds),
-                         phases_text(run, [&](const StepQuantity& time) { return time(build); })));
+        line("build (step 1)", fmt::format("{} ({})", duration_text(build.detect_seconds),
+                                           phases_text(run, [&](const StepQuantity& time) { return time(build); })));
     }
     if (run.steps.size() >= 2) {
         const Spread detect = spread_after_build(run, detect_time);
         line(fmt::format("detect ({})", counted(run.steps.size() - 1, "step")),
-             fmt::format("median {}, mean {}, min {}, max {} (CPU median {})",
-                         duration_text(detect.median), duration_text(detect.mean), duration_text(detect.min),
-                         duration_text(detect.max),
+             fmt::format("median {}, mean {}, min {}, max {} (CPU median {})", duration_text(detect.median),
+                         duration_text(detect.mean), duration_text(detect.min), duration_text(detect.max),
                          duration_text(median_after_build(run, detect_cpu_time))));
         line("phases (median)",
              phases_text(run, [&](const StepQuantity& time) { return median_after_build(run, time); }));
@@ -164,8 +160,8 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
             line("levels (median)", levels);
         }
         if (run.skin > 0) {
-            const auto rebuilt = static_cast<std::size_t>(
-                std::count_if(run.steps.begin() + 1, run.steps.end(), [](const StepRecord& s) { return s.stats.skin_rebuilt; }));
+            const auto rebuilt = static_cast<std::size_t>(std::count_if(
+                run.steps.begin() + 1, run.steps.end(), [](const StepRecord& s) { return s.stats.skin_rebuilt; }));
             line("skin", fmt::format("{:g}: rebuilt in {} of {}; median {}, {} refreshed", run.skin, rebuilt,
                                      counted(run.steps.size() - 1, "step"),
                                      counted(rounded(median_after_build(run, skin_candidates)), "candidate"),
@@ -174,16 +170,13 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
         line("world update (median)",
              duration_text(median_after_build(run, world_update_time)) + " in the batch calls");
         line("pairs per step",
-             fmt::format("median {:.0f}, last {}", median_after_build(run, pair_count),
-                         run.steps.back().stats.pairs));
+             fmt::format("median {:.0f}, last {}", median_after_build(run, pair_count), run.steps.back().stats.pairs));
     } else if (!run.steps.empty()) {
         line("pairs", fmt::format("{}", run.steps.back().stats.pairs));
     }
-    const std::string peak =
-        run.peak_resident_bytes
-            ? fmt::format(", peak RSS {:.1f} MB",
-                          static_cast<double>(*run.peak_resident_bytes) / 1e6)
-            : std::string();
+    const std::string peak = run.peak_resident_bytes ? fmt::format(", peak RSS {:.1f} MB",
+                                                                   static_cast<double>(*run.peak_resident_bytes) / 1e6)
+                                                     : std::string();
     line("memory", fmt::format("{:.1f} bytes per box ({:.1f} MB held{})", bytes_per_box(run),
                                static_cast<double>(run.bytes_held) / 1e6, peak));
 
@@ -191,17 +184,16 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
     if (!check.enabled) {
         line("check", "skipped");
     } else if (check.ok()) {
-        line("check", fmt::format("OK, {} the grid reference (last: step {}, reference {})",
-                                  check.steps_checked == 1 ? "1 step equals"
-                                                           : counted(check.steps_checked, "step") + " equal",
-                                  check.last_checked_step, duration_text(check.last_reference_seconds)));
+        line("check",
+             fmt::format("OK, {} the grid reference (last: step {}, reference {})",
+                         check.steps_checked == 1 ? "1 step equals" : counted(check.steps_checked, "step") + " equal",
+                         check.last_checked_step, duration_text(check.last_reference_seconds)));
     } else {
         line("check", fmt::format("MISMATCH in {} of {}; step {}: {} missing (e.g. {}), {} extra "
                                   "(e.g. {})",
                                   check.mismatched_steps, counted(check.steps_checked, "checked step"),
                                   check.first_bad_step, counted(check.missing_pairs, "pair"),
-                                  pair_text(check.example_missing),
-                                  check.extra_pairs, pair_text(check.example_extra)));
+                                  pair_text(check.example_missing), check.extra_pairs, pair_text(check.example_extra)));
     }
 }
 
@@ -221,9 +213,7 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     json summary;
     summary["dimension"] = run.dimension;
     // N drifts every step (by up to Λ·N), so the timed steps' median N is given too.
-    summary["boxes"] = {{"initial", run.initial_boxes},
-                        {"final", run.final_boxes},
-                        {"median", median_json(box_count)}};
+    summary["boxes"] = {{"initial", run.initial_boxes}, {"final", run.final_boxes}, {"median", median_json(box_count)}};
     summary["packing_density"] = run.packing_density;
     summary["cube_side"] = run.cube_side;
     summary["size_ratio"] = run.size_ratio;
@@ -241,8 +231,7 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
                                  {"candidates_median", median_after_build(run, skin_candidates)},
                                  {"refreshed_median", median_after_build(run, skin_refreshed)}};
     }
-    summary["build_seconds"] =
-        run.steps.empty() ? json(nullptr) : json(run.steps.front().detect_seconds);
+    summary["build_seconds"] = run.steps.empty() ? json(nullptr) : json(run.steps.front().detect_seconds);
     json build_phases = json::object();
     json median_phases = json::object();
     for (const Phase& phase : all_phases()) {
@@ -266,10 +255,8 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
                         {"last", run.steps.empty() ? 0 : run.steps.back().stats.pairs}};
     summary["bytes_held"] = run.bytes_held;
     summary["bytes_per_box"] = bytes_per_box(run);
-    summary["peak_rss_bytes"] =
-        run.peak_resident_bytes ? json(*run.peak_resident_bytes) : json(nullptr);
-    summary["oversized_boxes_last"] =
-        run.steps.empty() ? 0 : run.steps.back().stats.oversized_boxes;
+    summary["peak_rss_bytes"] = run.peak_resident_bytes ? json(*run.peak_resident_bytes) : json(nullptr);
+    summary["oversized_boxes_last"] = run.steps.empty() ? 0 : run.steps.back().stats.oversized_boxes;
 
     const CheckRecord& check = run.check;
     json check_json = {{"enabled", check.enabled},

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scene_csv.hpp"
 
 #include <fmt/format.h>
@@ -25,8 +26,7 @@ constexpr std::size_t flush_threshold = std::size_t{1} << 20;
 
 std::string_view scene_header(int dimension) { return dimension == 2 ? header_2d : header_3d; }
 
-SceneReader::SceneReader(std::istream& in, std::string source_name)
-    : lines_(in), source_name_(std::move(source_name)) {
+SceneReader::SceneReader(std::istream& in, std::string source_name) : lines_(in), source_name_(std::move(source_name)) {
     read_header();
 }
 
@@ -37,8 +37,7 @@ void SceneReader::fail(std::uint64_t line, const std::string& problem) const {
 void SceneReader::read_header() {
     auto line = lines_.next();
     if (!line)
-        fail(1, "empty file: expected the header '" + std::string(header_3d) + "' or '" +
-                    std::string(header_2d) + "'");
+        fail(1, "empty file: expected the header '" + std::string(header_3d) + "' or '" + std::string(header_2d) + "'");
     std::string_view text = *line;
     if (text.starts_with(byte_order_mark)) text.remove_prefix(byte_order_mark.size());
     split_fields(text, fields_);
@@ -52,9 +51,8 @@ void SceneReader::read_header() {
     } else if (normalised == header_2d) {
         dimension_ = 2;
     } else {
-        fail(lines_.line_number(), "unknown header '" + std::string(text.substr(0, 80)) +
-                                       "': expected '" + std::string(header_3d) + "' or '" +
-                                       std::string(header_2d) + "'");
+        fail(lines_.line_number(), "unknown header '" + std::string(text.substr(0, 80)) + "': expected '" +
+                                       std::string(header_3d) + "' or '" + std::string(header_2d) + "'");
     }
 }
 
@@ -69,8 +67,8 @@ bool SceneReader::read_row(Row& row) {
     split_fields(*line, fields_);
     const std::size_t coordinate_count = 2 * static_cast<std::size_t>(dimension_);
     if (fields_.size() != 2 + coordinate_count) {
-        fail(row.line, "expected " + std::to_string(2 + coordinate_count) + " fields, found " +
-                           std::to_string(fields_.size()));
+        fail(row.line,
+             "expected " + std::to_string(2 + coordinate_count) + " fields, found " + std::to_string(fields_.size()));
     }
     const auto* names = dimension_ == 2 ? coordinate_names_2d : coordinate_names_3d;
     try {
@@ -84,9 +82,8 @@ bool SceneReader::read_row(Row& row) {
     const auto dim = static_cast<std::size_t>(dimension_);
     for (std::size_t k = 0; k < dim; ++k) {
         if (row.coordinates[k] > row.coordinates[dim + k]) {
-            fail(row.line,
-                 fmt::format("{} {} is greater than {} {}", names[k], trim(fields_[2 + k]),
-                             names[dim + k], trim(fields_[2 + dim + k])));
+            fail(row.line, fmt::format("{} {} is greater than {} {}", names[k], trim(fields_[2 + k]), names[dim + k],
+                                       trim(fields_[2 + dim + k])));
         }
     }
     return true;
@@ -94,8 +91,7 @@ bool SceneReader::read_row(Row& row) {
 
 template <int Dim>
 bool SceneReader::read_frame(SceneFrame<Dim>& frame) {
-    if (Dim != dimension_)
-        throw std::logic_error("SceneReader::read_frame: dimension differs from the header's");
+    if (Dim != dimension_) throw std::logic_error("SceneReader::read_frame: dimension differs from the header's");
     frame.clear();
     if (!has_pending_ && !read_row(pending_)) return false;
     has_pending_ = false;
@@ -135,13 +131,11 @@ void SceneReader::sort_and_check_ids(SceneFrame<Dim>& frame) const {
     std::vector<std::size_t> order(ids.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     // Stable, so that of two rows with one id the first stays first and the second is blamed.
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
     for (std::size_t i = 1; i < order.size(); ++i) {
         if (ids[order[i]] == ids[order[i - 1]]) {
-            fail(frame.lines[order[i]],
-                 fmt::format("id {} appears twice in frame {} (first on line {})", ids[order[i]],
-                             frame.number, frame.lines[order[i - 1]]));
+            fail(frame.lines[order[i]], fmt::format("id {} appears twice in frame {} (first on line {})", ids[order[i]],
+                                                    frame.number, frame.lines[order[i - 1]]));
         }
     }
     SceneFrame<Dim> sorted;
@@ -161,8 +155,7 @@ template bool SceneReader::read_frame<2>(SceneFrame<2>&);
 template bool SceneReader::read_frame<3>(SceneFrame<3>&);
 
 SceneWriter::SceneWriter(std::ostream& out, int dimension) : out_(out), dimension_(dimension) {
-    if (dimension != 2 && dimension != 3)
-        throw std::invalid_argument("scene dimension must be 2 or 3");
+    if (dimension != 2 && dimension != 3) throw std::invalid_argument("scene dimension must be 2 or 3");
     buffer_.append(scene_header(dimension));
     buffer_ += '\n';
 }
@@ -178,29 +171,24 @@ SceneWriter::~SceneWriter() {
 template <int Dim>
 void SceneWriter::write_frame(std::uint64_t frame, std::span<const BoxId> ids,
                               std::span<const Box<double, Dim>> boxes) {
-    if (Dim != dimension_)
-        throw std::logic_error("SceneWriter: dimension differs from the header's");
-    if (ids.size() != boxes.size())
-        throw std::invalid_argument("SceneWriter: ids and boxes differ in length");
+    if (Dim != dimension_) throw std::logic_error("SceneWriter: dimension differs from the header's");
+    if (ids.size() != boxes.size()) throw std::invalid_argument("SceneWriter: ids and boxes differ in length");
     auto out = std::back_inserter(buffer_);
     for (std::size_t i = 0; i < ids.size(); ++i) {
         // fmt's "{}" prints the shortest decimal that reads back to the same double.
         if constexpr (Dim == 2) {
-            fmt::format_to(out, "{},{},{},{},{},{}\n", frame, ids[i], boxes[i].min[0],
-                           boxes[i].min[1], boxes[i].max[0], boxes[i].max[1]);
+            fmt::format_to(out, "{},{},{},{},{},{}\n", frame, ids[i], boxes[i].min[0], boxes[i].min[1], boxes[i].max[0],
+                           boxes[i].max[1]);
         } else {
-            fmt::format_to(out, "{},{},{},{},{},{},{},{}\n", frame, ids[i], boxes[i].min[0],
-                           boxes[i].min[1], boxes[i].min[2], boxes[i].max[0], boxes[i].max[1],
-                           boxes[i].max[2]);
+            fmt::format_to(out, "{},{},{},{},{},{},{},{}\n", frame, ids[i], boxes[i].min[0], boxes[i].min[1],
+                           boxes[i].min[2], boxes[i].max[0], boxes[i].max[1], boxes[i].max[2]);
         }
         if (buffer_.size() >= flush_threshold) flush();
     }
 }
 
-template void SceneWriter::write_frame<2>(std::uint64_t, std::span<const BoxId>,
-                                          std::span<const Box<double, 2>>);
-template void SceneWriter::write_frame<3>(std::uint64_t, std::span<const BoxId>,
-                                          std::span<const Box<double, 3>>);
+template void SceneWriter::write_frame<2>(std::uint64_t, std::span<const BoxId>, std::span<const Box<double, 2>>);
+template void SceneWriter::write_frame<3>(std::uint64_t, std::span<const BoxId>, std::span<const Box<double, 3>>);
 
 void SceneWriter::flush() {
     out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The scene CSV of the smb conventions: header `frame,id,xmin,ymin,zmin,xmax,ymax,zmax` (3D) or
 // `frame,id,xmin,ymin,xmax,ymax` (2D), one row per box per frame, frames non-decreasing.
@@ -83,8 +84,7 @@ public:
     SceneWriter& operator=(const SceneWriter&) = delete;
 
     template <int Dim>
-    void write_frame(std::uint64_t frame, std::span<const BoxId> ids,
-                     std::span<const Box<double, Dim>> boxes);
+    void write_frame(std::uint64_t frame, std::span<const BoxId> ids, std::span<const Box<double, Dim>> boxes);
     /// Hands everything buffered to the stream; throws std::runtime_error if the stream failed.
     void flush();
 

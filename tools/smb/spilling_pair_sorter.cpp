@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "spilling_pair_sorter.hpp"
 
 #include <algorithm>

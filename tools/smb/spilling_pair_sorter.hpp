@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Sorts the pairs of one frame in bounded memory: an external merge sort. Pairs are gathered in
 // memory up to a limit; past it each full run is sorted and spilled to an anonymous temporary

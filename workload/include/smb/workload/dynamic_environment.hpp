@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The artificial dynamic environment of Li, Feng & Owen (2006), Section 4: boxes placed at random
 // in a cube that every step move, resize, appear and disappear by a random fraction of an
@@ -19,9 +20,8 @@ namespace smb::workload {
 
 /// Parameters in the paper's notation. The largest side is b = 1 and the smallest a = b / H.
 struct EnvironmentParams {
-    std::size_t box_count = 200000;  ///< N at step 0
-    double packing_density =
-        0.4;  ///< E = N ((a + b) / 2)^Dim / x^Dim; sets x when cube_side is empty
+    std::size_t box_count = 200000;   ///< N at step 0
+    double packing_density = 0.4;     ///< E = N ((a + b) / 2)^Dim / x^Dim; sets x when cube_side is empty
     std::optional<double> cube_side;  ///< x; when given, E is derived from it instead
     double size_ratio = 2.5;          ///< H = b / a, at least 1
     double update_factor = 1e-3;      ///< Λ in [0, 1): bound of every random fraction λ, λ_i
@@ -29,11 +29,11 @@ struct EnvironmentParams {
 };
 
 /// Side x of the cube that holds `box_count` boxes of mean side (a + b) / 2 at density E.
-[[nodiscard]] double cube_side_for_density(std::size_t box_count, double packing_density,
-                                           double min_side, double max_side, int dim);
-/// Density E of `box_count` boxes of mean side (a + b) / 2 in a cube of side x.
-[[nodiscard]] double density_for_cube_side(std::size_t box_count, double cube_side, double min_side,
+[[nodiscard]] double cube_side_for_density(std::size_t box_count, double packing_density, double min_side,
                                            double max_side, int dim);
+/// Density E of `box_count` boxes of mean side (a + b) / 2 in a cube of side x.
+[[nodiscard]] double density_for_cube_side(std::size_t box_count, double cube_side, double min_side, double max_side,
+                                           int dim);
 
 /// What one step changed. The spans point into the environment's current arrays and stay valid
 /// until the next call of DynamicEnvironment::step().

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // An exact pair finder independent of the SMB pipeline, fast enough for the large scenes of
 // `smb run` (a uniform grid, about linear time for boxes of similar size).
@@ -17,7 +18,6 @@ namespace smb::workload {
 /// costs O(n), not O(n^2). Ids must be distinct. Throws std::invalid_argument on mismatched
 /// spans or an invalid box, std::length_error above 2^32 - 1 boxes.
 template <std::floating_point Real, int Dim>
-[[nodiscard]] std::vector<Pair> grid_pairs(std::span<const BoxId> ids,
-                                           std::span<const Box<Real, Dim>> boxes);
+[[nodiscard]] std::vector<Pair> grid_pairs(std::span<const BoxId> ids, std::span<const Box<Real, Dim>> boxes);
 
 }  // namespace smb::workload

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The array an array-based simulation keeps for smb::Detector, built from a scene kept in
 // increasing id order (the paper's environment, the benchmark scenes): a body keeps its index
@@ -25,8 +26,8 @@ public:
     /// Follows one step of the scene: `removed_ids` gone, `inserted_ids` new, and `env_ids` with
     /// `boxes` every box after the step, in increasing id order. Removals first, then every box
     /// copied to its body's index.
-    void follow(std::span<const BoxId> removed_ids, std::span<const BoxId> inserted_ids,
-                std::span<const BoxId> env_ids, std::span<const box_type> boxes) {
+    void follow(std::span<const BoxId> removed_ids, std::span<const BoxId> inserted_ids, std::span<const BoxId> env_ids,
+                std::span<const box_type> boxes) {
         // Before this step, environment index i held the body now at index index_of_[i] here,
         // and env_ids_ held the environment's ids in its (increasing) order.
         for (const BoxId removed : removed_ids) {
@@ -67,7 +68,7 @@ public:
 private:
     static constexpr std::uint32_t kGone = 0xFFFFFFFFU;
     std::vector<box_type> boxes_;
-    std::vector<BoxId> ids_;                  // per index
+    std::vector<BoxId> ids_;                   // per index
     std::vector<std::uint32_t> env_of_index_;  // per index: the environment's index of its body
     std::vector<std::uint32_t> index_of_;      // per environment index: the body's index here
     std::vector<BoxId> env_ids_;               // the environment's ids, in its order

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Hands the changes of one environment step to a World through its batch calls.
 
@@ -33,11 +34,9 @@ void apply_changes(const StepChanges<Dim>& changes, World<Real, Dim>& world) {
     if (!changes.removed_ids.empty()) world.remove(changes.removed_ids);
     if constexpr (std::is_same_v<Real, double>) {
         if (!changes.updated_ids.empty()) world.update(changes.updated_ids, changes.updated_boxes);
-        if (!changes.inserted_ids.empty())
-            world.insert(changes.inserted_ids, changes.inserted_boxes);
+        if (!changes.inserted_ids.empty()) world.insert(changes.inserted_ids, changes.inserted_boxes);
     } else {
-        if (!changes.updated_ids.empty())
-            world.update(changes.updated_ids, convert_boxes<Real>(changes.updated_boxes));
+        if (!changes.updated_ids.empty()) world.update(changes.updated_ids, convert_boxes<Real>(changes.updated_boxes));
         if (!changes.inserted_ids.empty())
             world.insert(changes.inserted_ids, convert_boxes<Real>(changes.inserted_boxes));
     }
