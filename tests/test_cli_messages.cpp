@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include <regex>
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -16,11 +16,33 @@ namespace {
 
 /// Whether `text` holds a number printed with exactly six decimals, as std::to_string and "%f"
 /// print a double.
+/// (A plain scan rather than <regex>: GCC 12's std::regex trips -Wmaybe-uninitialized in the
+/// sanitizer build, where warnings are errors.)
 bool has_fixed_six_decimals(const std::string& text) {
-    return std::regex_search(text, std::regex(R"(\d\.\d{6}(?!\d))"));
+    auto digit = [&](std::size_t i) {
+        return i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) != 0;
+    };
+    for (std::size_t dot = 1; dot < text.size(); ++dot) {
+        if (text[dot] != '.' || !digit(dot - 1)) continue;
+        std::size_t decimals = 0;
+        while (digit(dot + 1 + decimals)) ++decimals;
+        if (decimals == 6) return true;
+    }
+    return false;
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+/// Whether `text` says "1 <plural>" as whole words ("1 steps", not "21 steps" or "1 stepsize").
+bool has_one_with_plural(const std::string& text, const std::string& plural) {
+    auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; };
+    const std::string phrase = "1 " + plural;
+    for (std::size_t at = text.find(phrase); at != std::string::npos; at = text.find(phrase, at + 1)) {
+        const std::size_t end = at + phrase.size();
+        if ((at == 0 || !word_char(text[at - 1])) && (end == text.size() || !word_char(text[end]))) return true;
+    }
+    return false;
+}
 
 TEST(CliMessages, GenerateCountsFramesInTheSingularForOne) {
     TempFolder folder;
@@ -51,9 +73,11 @@ TEST(CliMessages, RunSummaryCountsStepsInTheSingularForOne) {
 
     const auto skin = run_smb(folder, {"run", "-n", "300", "-s", "2", "--pipeline", "detector", "--skin", "0.1"});
     ASSERT_EQ(skin.status, 0) << skin.err;
-    EXPECT_TRUE(std::regex_search(skin.out, std::regex(R"(rebuilt in [01] of 1 step;)"))) << skin.out;
+    EXPECT_TRUE(contains(skin.out, "rebuilt in 0 of 1 step;") || contains(skin.out, "rebuilt in 1 of 1 step;"))
+        << skin.out;
     for (const std::string& text : {one.out, two.out, three.out, skin.out}) {
-        EXPECT_FALSE(std::regex_search(text, std::regex(R"(\b1 (steps|frames|pairs|candidates|boxes)\b)"))) << text;
+        for (const char* noun : {"steps", "frames", "pairs", "candidates", "boxes"})
+            EXPECT_FALSE(has_one_with_plural(text, noun)) << text;
     }
 }
 
