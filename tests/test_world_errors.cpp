@@ -251,16 +251,6 @@ TYPED_TEST(WorldErrorTest, BatchInsertWithAnIdAlreadyPresent) {
     for (std::size_t i = 0; i + 1 < ids.size(); ++i) EXPECT_FALSE(this->world_.contains(ids[i]));
 }
 
-TYPED_TEST(WorldErrorTest, BatchInsertNamingAnIdTwice) {
-    std::vector<BoxId> ids;
-    std::vector<typename TestFixture::BoxT> boxes;
-    this->batch_with(this->random_valid_box(), ids, boxes);
-    ids.push_back(kBadId);
-    boxes.push_back(this->random_valid_box());
-    this->template expect_rejected<DuplicateIdError>(
-        "batch insert with an id twice", [&](TypeParam& w) { w.insert(ids, boxes); }, std::to_string(kBadId));
-}
-
 // The message says which of the two an insert's duplicate is: named twice in the batch, or
 // already in the world.
 TYPED_TEST(WorldErrorTest, BatchInsertNamingAnIdTwiceSaysItIsRepeatedInTheBatch) {
