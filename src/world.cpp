@@ -58,7 +58,37 @@ World<Real, Dim>& World<Real, Dim>::operator=(World&&) noexcept = default;
 template <std::floating_point Real, int Dim>
 detail::WorldState<Real, Dim>& World<Real, Dim>::state() {
     if (!state_) state_ = std::make_unique<detail::WorldState<Real, Dim>>(kDefaultSettings);
+    query_index_current_ = false;
     return *state_;
+}
+
+template <std::floating_point Real, int Dim>
+const BoxIndex<Real, Dim>& World<Real, Dim>::query_index() {
+    if (query_index_current_) return query_index_;
+    if (!state_ || state_->store().size() == 0) {
+        query_index_ = BoxIndex<Real, Dim>();
+    } else {
+        const auto& store = state_->store();
+        query_index_.build_from_store(store.boxes(), store.ids(),
+                                      [&](std::size_t slot) { return store.alive(static_cast<detail::Slot>(slot)); });
+    }
+    query_index_current_ = true;
+    return query_index_;
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::query(const box_type& box, std::vector<BoxId>& out) {
+    query_index().query(box, out);
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::query(std::span<const box_type> queries, std::vector<QueryHit>& out) {
+    query_index().query(queries, out);
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::cast_ray(const Ray<Real, Dim>& ray, RayHits mode, std::vector<RayHit<Real>>& out) {
+    query_index().cast_ray(ray, mode, out);
 }
 
 template <std::floating_point Real, int Dim>
@@ -104,6 +134,8 @@ void World<Real, Dim>::assign(std::span<const box_type> boxes) {
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::clear() {
     if (state_) state_->clear();
+    query_index_ = BoxIndex<Real, Dim>();
+    query_index_current_ = false;
 }
 
 template <std::floating_point Real, int Dim>
@@ -158,7 +190,7 @@ std::size_t World<Real, Dim>::last_retested_pairs() const noexcept {
 
 template <std::floating_point Real, int Dim>
 std::size_t World<Real, Dim>::bytes_held() const noexcept {
-    return state_ ? state_->bytes_held() : 0;
+    return (state_ ? state_->bytes_held() : 0) + query_index_.bytes_held();
 }
 
 template <std::floating_point Real, int Dim>

@@ -3,10 +3,12 @@
 // Everything a user of smb needs.
 
 #include "smb/box.hpp"
+#include "smb/box_index.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
+#include "smb/query.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 #include "smb/version.hpp"

@@ -11,9 +11,11 @@
 #include <vector>
 
 #include "smb/box.hpp"
+#include "smb/box_index.hpp"
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
+#include "smb/query.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -125,11 +127,26 @@ public:
     /// Heap bytes held by the world now (its own accounting of its arrays).
     [[nodiscard]] std::size_t bytes_held() const noexcept;
 
+    /// Region queries and ray casts (docs/queries.md). They answer for the boxes the world holds
+    /// now, with every change made so far: they use a BoxIndex over the world's boxes, rebuilt
+    /// (O(N)) by the first query after any other non-const call (a change, or a detection), and
+    /// then reused. Results and errors as BoxIndex: each box overlapping `box`, by id.
+    void query(const box_type& box, std::vector<BoxId>& out);
+    /// Every (query index, id) with the box `id` overlapping queries[index], sorted by index.
+    void query(std::span<const box_type> queries, std::vector<QueryHit>& out);
+    /// The boxes `ray` enters: the nearest, or all sorted by (t, id) (see BoxIndex::cast_ray).
+    void cast_ray(const Ray<Real, Dim>& ray, RayHits mode, std::vector<RayHit<Real>>& out);
+
 private:
-    /// The state; a moved-from world (state_ null) gets a fresh one first.
+    /// The state; a moved-from world (state_ null) gets a fresh one first. Every non-const path
+    /// comes through here, so this is also where the query index is marked out of date.
     detail::WorldState<Real, Dim>& state();
+    /// The query index, rebuilt first if the world may have changed since it was built.
+    const BoxIndex<Real, Dim>& query_index();
 
     std::unique_ptr<detail::WorldState<Real, Dim>> state_;
+    BoxIndex<Real, Dim> query_index_;
+    bool query_index_current_ = false;
 };
 
 using World2f = World<float, 2>;

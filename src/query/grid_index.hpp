@@ -1,0 +1,255 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The hierarchy of uniform grids behind smb::BoxIndex (see box_index.hpp for the layout), its
+// build and its box query. The ray walk is in grid_ray.hpp.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "smb/box.hpp"
+#include "smb/errors.hpp"
+#include "smb/pair.hpp"
+
+namespace smb::detail {
+
+/// One level of the hierarchy: a grid over the scene's bounds with cells of side `side`.
+template <int Dim>
+struct GridLevel {
+    double side = 1;
+    double inv = 1;                     // 1 / side
+    std::array<std::int64_t, Dim> n{};  // cells per axis
+    std::size_t first_cell = 0;         // of this level in GridIndex::cell_start
+};
+
+/// The cell of grid coordinate g on an axis of n cells. Clamping keeps the scene's boxes (which
+/// lie inside the grid) in range and sends anything outside to the border cells; it is monotone,
+/// which is what makes the box query exact.
+inline std::int64_t clamped_cell(double g, std::int64_t n) noexcept {
+    if (!(g >= 0)) return 0;
+    if (g >= static_cast<double>(n)) return n - 1;
+    return static_cast<std::int64_t>(g);
+}
+
+template <std::floating_point Real, int Dim>
+class GridIndex {
+public:
+    using box_type = Box<Real, Dim>;
+
+    // The state, read by the ray walk. Boxes and ids are in cell order (level, then cell of the
+    // lower corner), so the boxes of one cell lie close together in memory.
+    std::vector<box_type> boxes;
+    std::vector<BoxId> ids;
+    std::vector<GridLevel<Dim>> levels;   // the non-empty levels, finest first
+    std::vector<std::size_t> cell_start;  // entries of cell c: entries[cell_start[c], cell_start[c+1])
+    std::vector<std::uint32_t> entries;   // positions in boxes
+    std::array<double, Dim> origin{};     // the scene's lower corner: the grids' origin
+    std::array<double, Dim> upper{};      // the scene's upper corner
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        return boxes.capacity() * sizeof(box_type) + ids.capacity() * sizeof(BoxId) +
+               levels.capacity() * sizeof(GridLevel<Dim>) + cell_start.capacity() * sizeof(std::size_t) +
+               entries.capacity() * sizeof(std::uint32_t);
+    }
+
+    [[nodiscard]] std::int64_t cell_of(double v, int k, const GridLevel<Dim>& level) const noexcept {
+        return clamped_cell((v - origin[k]) * level.inv, level.n[k]);
+    }
+
+    /// Indexes boxes[i] under id_of(i) for every i with keep(i); the boxes must be valid.
+    template <class IdOf, class Keep>
+    void build(std::span<const box_type> input, IdOf id_of, Keep keep) {
+        boxes.clear();
+        ids.clear();
+        for (std::size_t i = 0; i < input.size(); ++i) {
+            if (!keep(i)) continue;
+            boxes.push_back(input[i]);
+            ids.push_back(id_of(i));
+        }
+        if (boxes.size() >= std::numeric_limits<std::uint32_t>::max())
+            throw ArgumentError("BoxIndex: " + std::to_string(boxes.size()) + " boxes, more than 2^32 - 2");
+        index_boxes();
+    }
+
+    /// Calls emit(id) for every box overlapping q, each once.
+    template <class Emit>
+    void query(const box_type& q, Emit&& emit) const {
+        if (boxes.empty()) return;
+        for (int k = 0; k < Dim; ++k) {
+            if (q.min[k] > upper[k] || q.max[k] < origin[k]) return;
+        }
+        for (const GridLevel<Dim>& level : levels) {
+            std::array<std::int64_t, Dim> lo{};
+            std::array<std::int64_t, Dim> hi{};
+            for (int k = 0; k < Dim; ++k) {
+                lo[k] = cell_of(q.min[k], k, level);
+                hi[k] = cell_of(q.max[k], k, level);
+            }
+            for_cells(lo, hi, level, [&](std::size_t cell, const std::array<std::int64_t, Dim>& c) {
+                for (std::size_t e = cell_start[cell]; e < cell_start[cell + 1]; ++e) {
+                    const box_type& b = boxes[entries[e]];
+                    if (!overlaps(q, b)) continue;
+                    // A box listed in several cells of the range is reported from the first cell
+                    // of the range it is listed in: on each axis, the larger of the two lower cells.
+                    bool first = true;
+                    for (int k = 0; k < Dim && first; ++k) {
+                        first = c[k] == lo[k] || c[k] == cell_of(b.min[k], k, level);
+                    }
+                    if (first) emit(ids[entries[e]]);
+                }
+            });
+        }
+    }
+
+    /// Calls visit(cell, coordinates) for every cell of `level` in [lo, hi] (inclusive), x fastest.
+    template <class Visit>
+    static void for_cells(const std::array<std::int64_t, Dim>& lo, const std::array<std::int64_t, Dim>& hi,
+                          const GridLevel<Dim>& level, Visit&& visit) {
+        std::array<std::int64_t, Dim> c{};
+        if constexpr (Dim == 2) {
+            for (c[1] = lo[1]; c[1] <= hi[1]; ++c[1]) {
+                const auto row = level.first_cell + static_cast<std::size_t>(c[1] * level.n[0]);
+                for (c[0] = lo[0]; c[0] <= hi[0]; ++c[0]) visit(row + static_cast<std::size_t>(c[0]), c);
+            }
+        } else {
+            for (c[2] = lo[2]; c[2] <= hi[2]; ++c[2]) {
+                for (c[1] = lo[1]; c[1] <= hi[1]; ++c[1]) {
+                    const auto row =
+                        level.first_cell + static_cast<std::size_t>((c[2] * level.n[1] + c[1]) * level.n[0]);
+                    for (c[0] = lo[0]; c[0] <= hi[0]; ++c[0]) visit(row + static_cast<std::size_t>(c[0]), c);
+                }
+            }
+        }
+    }
+
+private:
+    /// The finest cell side: the boxes' mean largest extent, made coarser until the finest grid
+    /// has at most about 2N cells (so sparse scenes and point-like boxes cost O(N) memory).
+    [[nodiscard]] double finest_side(double mean_extent) const {
+        const double cap = 2.0 * static_cast<double>(boxes.size()) + 16.0;
+        double span = 0;
+        for (int k = 0; k < Dim; ++k) span = std::max(span, upper[k] - origin[k]);
+        if (!(span > 0) || !std::isfinite(span)) return 1;
+        double side = mean_extent > 0 ? mean_extent : span / cap;
+        side = std::max(side, span * 1e-12);
+        for (;;) {
+            double cells = 1;
+            for (int k = 0; k < Dim; ++k) cells *= std::max(1.0, std::ceil((upper[k] - origin[k]) / side));
+            if (cells <= cap) return side;
+            side *= 1.25;
+        }
+    }
+
+    void index_boxes() {
+        levels.clear();
+        cell_start.clear();
+        entries.clear();
+        const std::size_t n = boxes.size();
+        if (n == 0) return;
+        origin.fill(std::numeric_limits<double>::infinity());
+        upper.fill(-std::numeric_limits<double>::infinity());
+        double extent_sum = 0;
+        for (const box_type& b : boxes) {
+            double e = 0;
+            for (int k = 0; k < Dim; ++k) {
+                origin[k] = std::min(origin[k], static_cast<double>(b.min[k]));
+                upper[k] = std::max(upper[k], static_cast<double>(b.max[k]));
+                e = std::max(e, static_cast<double>(b.max[k]) - static_cast<double>(b.min[k]));
+            }
+            extent_sum += e;
+        }
+        const double side0 = finest_side(extent_sum / static_cast<double>(n));
+
+        // Level of each box: the finest whose side is at least the box's largest extent, up to
+        // the level of a single cell per axis.
+        constexpr int kMaxLevels = 64;
+        double span = 0;
+        for (int k = 0; k < Dim; ++k) span = std::max(span, upper[k] - origin[k]);
+        int top = 0;
+        while (top + 1 < kMaxLevels && std::ldexp(side0, top) < span) ++top;
+        std::vector<std::uint8_t> level_of(n);
+        std::array<std::size_t, kMaxLevels> per_level{};
+        for (std::size_t i = 0; i < n; ++i) {
+            double e = 0;
+            for (int k = 0; k < Dim; ++k) e = std::max(e, static_cast<double>(boxes[i].max[k]) - boxes[i].min[k]);
+            int l = 0;
+            while (l < top && std::ldexp(side0, l) < e) ++l;
+            level_of[i] = static_cast<std::uint8_t>(l);
+            ++per_level[static_cast<std::size_t>(l)];
+        }
+        std::array<int, kMaxLevels> slot_of_level{};
+        std::size_t cells = 0;
+        for (int l = 0; l <= top; ++l) {
+            slot_of_level[static_cast<std::size_t>(l)] = static_cast<int>(levels.size());
+            if (per_level[static_cast<std::size_t>(l)] == 0) continue;
+            GridLevel<Dim> level;
+            level.side = std::ldexp(side0, l);
+            level.inv = 1 / level.side;
+            std::size_t count = 1;
+            for (int k = 0; k < Dim; ++k) {
+                level.n[k] =
+                    std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((upper[k] - origin[k]) * level.inv)));
+                count *= static_cast<std::size_t>(level.n[k]);
+            }
+            level.first_cell = cells;
+            cells += count;
+            levels.push_back(level);
+        }
+
+        // Counting sort of the boxes by (level, cell of the lower corner).
+        std::vector<std::size_t> cell_key(n);
+        std::vector<std::size_t> start(cells + 1, 0);
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto& level = levels[static_cast<std::size_t>(slot_of_level[level_of[i]])];
+            std::size_t c = 0;
+            for (int k = Dim - 1; k >= 0; --k)
+                c = c * static_cast<std::size_t>(level.n[k]) +
+                    static_cast<std::size_t>(cell_of(boxes[i].min[k], k, level));
+            cell_key[i] = level.first_cell + c;
+            ++start[cell_key[i] + 1];
+            level_of[i] = static_cast<std::uint8_t>(slot_of_level[level_of[i]]);
+        }
+        for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+        std::vector<box_type> sorted_boxes(n);
+        std::vector<BoxId> sorted_ids(n);
+        std::vector<std::uint8_t> sorted_levels(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t to = start[cell_key[i]]++;
+            sorted_boxes[to] = boxes[i];
+            sorted_ids[to] = ids[i];
+            sorted_levels[to] = level_of[i];
+        }
+        boxes.swap(sorted_boxes);
+        ids.swap(sorted_ids);
+
+        // Every box listed in every cell it overlaps on its level (counting sort again; the boxes
+        // are visited in order, so each cell lists its boxes in ascending position).
+        cell_start.assign(cells + 1, 0);
+        auto each_cell = [&](std::size_t i, auto&& f) {
+            const auto& level = levels[sorted_levels[i]];
+            std::array<std::int64_t, Dim> lo{};
+            std::array<std::int64_t, Dim> hi{};
+            for (int k = 0; k < Dim; ++k) {
+                lo[k] = cell_of(boxes[i].min[k], k, level);
+                hi[k] = cell_of(boxes[i].max[k], k, level);
+            }
+            for_cells(lo, hi, level, [&](std::size_t cell, const auto&) { f(cell); });
+        };
+        for (std::size_t i = 0; i < n; ++i) each_cell(i, [&](std::size_t cell) { ++cell_start[cell + 1]; });
+        for (std::size_t c = 0; c < cells; ++c) cell_start[c + 1] += cell_start[c];
+        entries.resize(cell_start[cells]);
+        std::vector<std::size_t> fill(cell_start.begin(), cell_start.end() - 1);
+        for (std::size_t i = 0; i < n; ++i) {
+            each_cell(i, [&](std::size_t cell) { entries[fill[cell]++] = static_cast<std::uint32_t>(i); });
+        }
+    }
+};
+
+}  // namespace smb::detail

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+// World::query and World::cast_ray answer for the boxes the world holds now: checked against
+// brute force over a map of the same boxes through inserts, updates, removes, assign, detect,
+// clear and moves.
+
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <map>
+#include <random>
+#include <vector>
+
+#include "query_reference.hpp"
+#include "smb/world.hpp"
+
+namespace smb::test {
+namespace {
+
+template <class W>
+class WorldQueryTest : public ::testing::Test {
+protected:
+    using Real = typename W::real_type;
+    static constexpr int Dim = W::dimension;
+    using B = Box<Real, Dim>;
+
+    std::mt19937_64 rng{777};
+    std::map<BoxId, B> truth;
+
+    double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+
+    B random_box(double space) {
+        B b;
+        for (int k = 0; k < Dim; ++k) {
+            const double size = uniform(0, 1) < 0.02 ? uniform(5, space) : uniform(0, 2);
+            const double lo = std::round(uniform(0, space) * 2) / 2;
+            b.min[k] = static_cast<Real>(lo);
+            b.max[k] = static_cast<Real>(lo + std::round(size * 2) / 2);
+        }
+        return b;
+    }
+
+    void check(W& world, int queries, int rays) {
+        std::vector<BoxId> ids;
+        std::vector<B> boxes;
+        for (const auto& [id, box] : truth) {
+            ids.push_back(id);
+            boxes.push_back(box);
+        }
+        for (int i = 0; i < queries; ++i) expect_query<W, Real, Dim>(world, ids, boxes, random_box(30));
+        for (int i = 0; i < rays; ++i) {
+            Ray<Real, Dim> ray;
+            for (int k = 0; k < Dim; ++k) {
+                ray.origin[k] = static_cast<Real>(std::round(uniform(-5, 35) * 2) / 2);
+                ray.direction[k] = static_cast<Real>(i % 2 ? std::round(uniform(-1, 1)) : uniform(-1, 1));
+            }
+            if (i % 4 == 0) ray.max_t = static_cast<Real>(uniform(0, 20));
+            if (!is_valid(ray)) ray.max_t = 1;
+            expect_cast<W, Real, Dim>(world, ids, boxes, ray);
+        }
+    }
+};
+
+using WorldTypes = ::testing::Types<World2f, World2d, World3f, World3d>;
+TYPED_TEST_SUITE(WorldQueryTest, WorldTypes);
+
+TYPED_TEST(WorldQueryTest, AnswersForTheBoxesAsTheyAreNow) {
+    TypeParam world;
+    BoxId next = 100;
+    std::vector<Pair> pairs;
+    for (int step = 0; step < 12; ++step) {
+        for (int i = 0; i < 60; ++i) {
+            const auto box = this->random_box(30);
+            world.insert(next, box);
+            this->truth[next++] = box;
+        }
+        int n = 0;
+        for (auto it = this->truth.begin(); it != this->truth.end();) {
+            if (++n % 5 == 0) {
+                world.remove(it->first);
+                it = this->truth.erase(it);
+            } else {
+                if (n % 3 == 0) {
+                    it->second = this->random_box(30);
+                    world.update(it->first, it->second);
+                }
+                ++it;
+            }
+        }
+        if (step % 3 == 1) world.detect(pairs);
+        this->check(world, 30, 60);
+        // Queries again without changes reuse the index and answer the same.
+        this->check(world, 5, 10);
+    }
+}
+
+TYPED_TEST(WorldQueryTest, AssignClearAndMove) {
+    using Bt = typename TestFixture::B;
+    TypeParam world;
+    std::vector<Bt> boxes;
+    for (int i = 0; i < 200; ++i) boxes.push_back(this->random_box(30));
+    world.assign(boxes);
+    for (std::size_t i = 0; i < boxes.size(); ++i) this->truth[i] = boxes[i];
+    this->check(world, 20, 40);
+    EXPECT_GT(world.bytes_held(), 0U);
+
+    TypeParam moved(std::move(world));
+    this->check(moved, 20, 40);
+    std::vector<BoxId> out{1};
+    world.query(boxes[0], out);  // a moved-from world is empty
+    EXPECT_TRUE(out.empty());
+    EXPECT_EQ(world.bytes_held(), 0U);
+
+    moved.clear();
+    this->truth.clear();
+    moved.query(boxes[0], out);
+    EXPECT_TRUE(out.empty());
+    EXPECT_EQ(moved.bytes_held(), TypeParam().bytes_held());
+
+    boxes.resize(50);
+    moved.assign(boxes);
+    for (std::size_t i = 0; i < boxes.size(); ++i) this->truth[i] = boxes[i];
+    this->check(moved, 20, 40);
+}
+
+}  // namespace
+}  // namespace smb::test
