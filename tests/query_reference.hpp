@@ -38,7 +38,9 @@ std::vector<RayHit<Real>> brute_cast(std::span<const BoxId> ids, std::span<const
     };
     std::vector<Exact> hits;
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-        if (const auto t = ray_entry(ray, boxes[i])) hits.push_back({*t, ids[i]});
+        // Sorted by the t reported, rounded to Real.
+        if (const auto t = ray_entry(ray, boxes[i]))
+            hits.push_back({static_cast<double>(static_cast<Real>(*t)), ids[i]});
     }
     std::sort(hits.begin(), hits.end(),
               [](const Exact& a, const Exact& b) { return a.t != b.t ? a.t < b.t : a.id < b.id; });

@@ -338,5 +338,43 @@ TYPED_TEST(BoxIndexTest, NearestTiesGoToTheLeastId) {
     EXPECT_EQ(hits.size(), 5U);
 }
 
+TYPED_TEST(BoxIndexTest, HitsAreOrderedByTheReportedT) {
+    using Rt = typename TestFixture::Real;
+    constexpr int Dm = TestFixture::Dim;
+    // Faces one ulp apart, entered at t that differ in double but may round to the same Real;
+    // ids descending, so that (t, id) order and double order disagree where they tie.
+    std::vector<Box<Rt, Dm>> faces;
+    std::vector<BoxId> descending;
+    Rt x = 1;
+    for (int i = 0; i < 40; ++i) {
+        Box<Rt, Dm> b;
+        b.min.fill(0);
+        b.max.fill(1);
+        b.min[0] = x;
+        b.max[0] = 2;
+        faces.push_back(b);
+        descending.push_back(static_cast<BoxId>(100 - i));
+        x = std::nextafter(x, Rt(2));
+    }
+    BoxIndex<Rt, Dm> index(descending, faces);
+    Ray<Rt, Dm> ray;
+    ray.origin.fill(Rt(0.5));
+    ray.origin[0] = Rt(-0.3);
+    ray.direction[0] = Rt(3);
+    std::vector<RayHit<Rt>> all;
+    std::vector<RayHit<Rt>> nearest;
+    index.cast_ray(ray, RayHits::all, all);
+    index.cast_ray(ray, RayHits::nearest, nearest);
+    ASSERT_EQ(all.size(), faces.size());
+    for (std::size_t i = 1; i < all.size(); ++i) {
+        ASSERT_TRUE(all[i - 1].t < all[i].t || (all[i - 1].t == all[i].t && all[i - 1].id < all[i].id)) << i;
+    }
+    ASSERT_EQ(nearest.size(), 1U);
+    EXPECT_EQ(nearest[0], all[0]);
+    this->boxes = faces;
+    this->ids = descending;
+    expect_cast<BoxIndex<Rt, Dm>, Rt, Dm>(index, this->ids, this->boxes, ray);
+}
+
 }  // namespace
 }  // namespace smb::test

@@ -69,7 +69,8 @@ enum class RayHits {
 };
 
 /// A box the ray enters, at origin + t * direction; t = 0 when the origin is inside the box.
-/// t is computed in double and rounded to Real.
+/// t is computed in double (smb::ray_entry) and rounded to Real; the (t, id) order of the hits
+/// is that of this rounded t.
 template <std::floating_point Real>
 struct RayHit {
     BoxId id = 0;

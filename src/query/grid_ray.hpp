@@ -19,7 +19,7 @@
 
 namespace smb::detail {
 
-/// A candidate hit: a position in GridIndex::boxes and its entry parameter.
+/// A candidate hit: a position in GridIndex::boxes and its entry parameter (rounded to Real).
 struct RayCandidate {
     double t = 0;
     BoxId id = 0;
@@ -43,12 +43,17 @@ void walk_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, bool 
     auto test_cell = [&](std::size_t cell) {
         for (std::size_t e = grid.cell_start[cell]; e < grid.cell_start[cell + 1]; ++e) {
             const std::uint32_t p = grid.entries[e];
-            if (const auto t = ray_entry(ray, grid.boxes[p])) hit(RayCandidate{*t, grid.ids[p], p});
+            // The order of hits is that of the reported t, rounded to Real, so that (t, id) order
+            // holds for what the caller sees.
+            if (const auto t = ray_entry(ray, grid.boxes[p]))
+                hit(RayCandidate{static_cast<double>(static_cast<Real>(*t)), grid.ids[p], p});
         }
     };
     auto beyond_best = [&](double t) {
         const RayCandidate* b = best();
-        return nearest && b != nullptr && t > b->t;
+        // Beyond every t that rounds to the best's: a box entered there cannot tie with it.
+        return nearest && b != nullptr &&
+               t > static_cast<double>(std::nextafter(static_cast<Real>(b->t), std::numeric_limits<Real>::infinity()));
     };
 
     for (const GridLevel<Dim>& level : grid.levels) {
