@@ -32,6 +32,8 @@ public:
     virtual void query(const box_type& q, std::vector<BoxId>& out) = 0;
     /// The nearest hit, or every hit sorted by (t, id).
     virtual void cast(const ray_type& ray, RayHits mode, std::vector<RayHit<float>>& out) = 0;
+    /// Heap bytes the index holds, where the method can say (0: it cannot).
+    [[nodiscard]] virtual std::size_t bytes_held() const { return 0; }
 };
 
 std::unique_ptr<QueryPeer<2>> make_smb_query_peer_2d();

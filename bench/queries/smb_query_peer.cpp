@@ -14,6 +14,7 @@ public:
     void cast(const Ray<float, Dim>& ray, RayHits mode, std::vector<RayHit<float>>& out) override {
         index_.cast_ray(ray, mode, out);
     }
+    std::size_t bytes_held() const override { return index_.bytes_held(); }
 
 private:
     BoxIndex<float, Dim> index_;
