@@ -41,6 +41,20 @@ void check_ray(const Ray<Real, Dim>& ray) {
     throw ArgumentError(start + "a zero direction needs a finite max_t (a zero-length segment)");
 }
 
+/// Builds into the index's grid, reusing its memory (a rebuild every step would otherwise pay the
+/// page faults of fresh arrays). The input is checked before; should the build still throw (out of
+/// memory, or more than 2^32 entries), the index is left empty.
+template <class Grid, class Build>
+void rebuild_grid(std::unique_ptr<Grid>& grid, Build&& build) {
+    if (!grid) grid = std::make_unique<Grid>();
+    try {
+        build(*grid);
+    } catch (...) {
+        grid.reset();
+        throw;
+    }
+}
+
 }  // namespace
 
 template <std::floating_point Real, int Dim>
@@ -70,10 +84,10 @@ void BoxIndex<Real, Dim>::build(std::span<const box_type> boxes) {
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         if (!is_valid(boxes[i])) throw InvalidBoxError(detail::describe_invalid_box(static_cast<BoxId>(i), boxes[i]));
     }
-    auto grid = std::make_unique<detail::GridIndex<Real, Dim>>();
-    grid->build(
-        boxes, [](std::size_t i) { return static_cast<BoxId>(i); }, [](std::size_t) { return true; });
-    grid_ = std::move(grid);
+    rebuild_grid(grid_, [&](detail::GridIndex<Real, Dim>& grid) {
+        grid.build(
+            boxes, [](std::size_t i) { return static_cast<BoxId>(i); }, [](std::size_t) { return true; });
+    });
 }
 
 template <std::floating_point Real, int Dim>
@@ -85,19 +99,19 @@ void BoxIndex<Real, Dim>::build(std::span<const BoxId> ids, std::span<const box_
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         if (!is_valid(boxes[i])) throw InvalidBoxError(detail::describe_invalid_box(ids[i], boxes[i]));
     }
-    auto grid = std::make_unique<detail::GridIndex<Real, Dim>>();
-    grid->build(
-        boxes, [&](std::size_t i) { return ids[i]; }, [](std::size_t) { return true; });
-    grid_ = std::move(grid);
+    rebuild_grid(grid_, [&](detail::GridIndex<Real, Dim>& grid) {
+        grid.build(
+            boxes, [&](std::size_t i) { return ids[i]; }, [](std::size_t) { return true; });
+    });
 }
 
 template <std::floating_point Real, int Dim>
 void BoxIndex<Real, Dim>::build_from_store(std::span<const box_type> boxes, std::span<const BoxId> ids,
                                            const std::function<bool(std::size_t)>& keep) {
-    auto grid = std::make_unique<detail::GridIndex<Real, Dim>>();
-    grid->build(
-        boxes, [&](std::size_t i) { return ids[i]; }, keep);
-    grid_ = std::move(grid);
+    rebuild_grid(grid_, [&](detail::GridIndex<Real, Dim>& grid) {
+        grid.build(
+            boxes, [&](std::size_t i) { return ids[i]; }, keep);
+    });
 }
 
 template <std::floating_point Real, int Dim>

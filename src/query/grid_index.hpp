@@ -47,15 +47,15 @@ public:
     // lower corner), so the boxes of one cell lie close together in memory.
     std::vector<box_type> boxes;
     std::vector<BoxId> ids;
-    std::vector<GridLevel<Dim>> levels;   // the non-empty levels, finest first
-    std::vector<std::size_t> cell_start;  // entries of cell c: entries[cell_start[c], cell_start[c+1])
-    std::vector<std::uint32_t> entries;   // positions in boxes
-    std::array<double, Dim> origin{};     // the scene's lower corner: the grids' origin
-    std::array<double, Dim> upper{};      // the scene's upper corner
+    std::vector<GridLevel<Dim>> levels;     // the non-empty levels, finest first
+    std::vector<std::uint32_t> cell_start;  // entries of cell c: entries[cell_start[c], cell_start[c+1])
+    std::vector<std::uint32_t> entries;     // positions in boxes
+    std::array<double, Dim> origin{};       // the scene's lower corner: the grids' origin
+    std::array<double, Dim> upper{};        // the scene's upper corner
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return boxes.capacity() * sizeof(box_type) + ids.capacity() * sizeof(BoxId) +
-               levels.capacity() * sizeof(GridLevel<Dim>) + cell_start.capacity() * sizeof(std::size_t) +
+               levels.capacity() * sizeof(GridLevel<Dim>) + cell_start.capacity() * sizeof(std::uint32_t) +
                entries.capacity() * sizeof(std::uint32_t);
     }
 
@@ -66,15 +66,17 @@ public:
     /// Indexes boxes[i] under id_of(i) for every i with keep(i); the boxes must be valid.
     template <class IdOf, class Keep>
     void build(std::span<const box_type> input, IdOf id_of, Keep keep) {
+        if (input.size() >= std::numeric_limits<std::uint32_t>::max())
+            throw ArgumentError("BoxIndex: " + std::to_string(input.size()) + " boxes, more than 2^32 - 2");
         boxes.clear();
         ids.clear();
+        boxes.reserve(input.size());
+        ids.reserve(input.size());
         for (std::size_t i = 0; i < input.size(); ++i) {
             if (!keep(i)) continue;
             boxes.push_back(input[i]);
             ids.push_back(id_of(i));
         }
-        if (boxes.size() >= std::numeric_limits<std::uint32_t>::max())
-            throw ArgumentError("BoxIndex: " + std::to_string(boxes.size()) + " boxes, more than 2^32 - 2");
         index_boxes();
     }
 
@@ -204,15 +206,16 @@ private:
         }
 
         // Counting sort of the boxes by (level, cell of the lower corner).
-        std::vector<std::size_t> cell_key(n);
-        std::vector<std::size_t> start(cells + 1, 0);
+        if (cells >= std::numeric_limits<std::uint32_t>::max()) throw ArgumentError("BoxIndex: too many cells");
+        std::vector<std::uint32_t> cell_key(n);
+        std::vector<std::uint32_t> start(cells + 1, 0);
         for (std::size_t i = 0; i < n; ++i) {
             const auto& level = levels[static_cast<std::size_t>(slot_of_level[level_of[i]])];
             std::size_t c = 0;
             for (int k = Dim - 1; k >= 0; --k)
                 c = c * static_cast<std::size_t>(level.n[k]) +
                     static_cast<std::size_t>(cell_of(boxes[i].min[k], k, level));
-            cell_key[i] = level.first_cell + c;
+            cell_key[i] = static_cast<std::uint32_t>(level.first_cell + c);
             ++start[cell_key[i] + 1];
             level_of[i] = static_cast<std::uint8_t>(slot_of_level[level_of[i]]);
         }
@@ -242,12 +245,20 @@ private:
             }
             for_cells(lo, hi, level, [&](std::size_t cell, const auto&) { f(cell); });
         };
-        for (std::size_t i = 0; i < n; ++i) each_cell(i, [&](std::size_t cell) { ++cell_start[cell + 1]; });
-        for (std::size_t c = 0; c < cells; ++c) cell_start[c + 1] += cell_start[c];
-        entries.resize(cell_start[cells]);
-        std::vector<std::size_t> fill(cell_start.begin(), cell_start.end() - 1);
-        for (std::size_t i = 0; i < n; ++i) {
-            each_cell(i, [&](std::size_t cell) { entries[fill[cell]++] = static_cast<std::uint32_t>(i); });
+        // Counts in cell_start[c], summed to each cell's end, then filled backwards so that each
+        // ends at its start: no second array of offsets.
+        std::uint64_t total = 0;
+        for (std::size_t i = 0; i < n; ++i) each_cell(i, [&](std::size_t cell) { ++cell_start[cell]; });
+        for (std::size_t c = 0; c < cells; ++c) {
+            total += cell_start[c];
+            if (total >= std::numeric_limits<std::uint32_t>::max())
+                throw ArgumentError("BoxIndex: more than 2^32 - 2 cell entries");
+            cell_start[c] = static_cast<std::uint32_t>(total);
+        }
+        cell_start[cells] = static_cast<std::uint32_t>(total);
+        entries.resize(total);
+        for (std::size_t i = n; i-- > 0;) {
+            each_cell(i, [&](std::size_t cell) { entries[--cell_start[cell]] = static_cast<std::uint32_t>(i); });
         }
     }
 };
