@@ -376,5 +376,21 @@ TYPED_TEST(BoxIndexTest, HitsAreOrderedByTheReportedT) {
     expect_cast<BoxIndex<Rt, Dm>, Rt, Dm>(index, this->ids, this->boxes, ray);
 }
 
+TYPED_TEST(BoxIndexTest, RebuildReplacesTheBoxes) {
+    // A rebuild reuses the index's arrays: larger, then smaller, then empty, then again.
+    BoxIndex<typename TestFixture::Real, TestFixture::Dim> index;
+    for (const std::size_t n : {300U, 1200U, 40U, 0U, 500U}) {
+        this->mixed_scene(n, 20);
+        index.build(this->ids, this->boxes);
+        ASSERT_EQ(index.size(), n);
+        for (int i = 0; i < 50 && n != 0; ++i) {
+            expect_query<BoxIndex<typename TestFixture::Real, TestFixture::Dim>, typename TestFixture::Real,
+                         TestFixture::Dim>(index, this->ids, this->boxes, this->random_query(20));
+            expect_cast<BoxIndex<typename TestFixture::Real, TestFixture::Dim>, typename TestFixture::Real,
+                        TestFixture::Dim>(index, this->ids, this->boxes, this->awkward_ray(i, 20));
+        }
+    }
+}
+
 }  // namespace
 }  // namespace smb::test
