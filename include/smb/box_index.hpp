@@ -66,7 +66,9 @@ public:
     BoxIndex(const BoxIndex&) = delete;
     BoxIndex& operator=(const BoxIndex&) = delete;
 
-    /// Replaces the indexed boxes (box i under id i); all or nothing.
+    /// Replaces the indexed boxes (box i under id i), reusing the index's memory. An invalid box
+    /// throws before anything changes; should the build itself fail (out of memory, more than
+    /// 2^32 - 2 boxes or cell entries), the index is left empty.
     void build(std::span<const box_type> boxes);
     void build(std::span<const BoxId> ids, std::span<const box_type> boxes);
 
