@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-#include "query_reference.hpp"
+#include "reference/query_reference.hpp"
 #include "smb/box_index.hpp"
 
 namespace smb::test {

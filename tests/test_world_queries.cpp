@@ -5,12 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <map>
 #include <random>
 #include <vector>
 
-#include "query_reference.hpp"
+#include "reference/query_reference.hpp"
 #include "smb/world.hpp"
 
 namespace smb::test {
@@ -120,6 +121,32 @@ TYPED_TEST(WorldQueryTest, AssignClearAndMove) {
     moved.assign(boxes);
     for (std::size_t i = 0; i < boxes.size(); ++i) this->truth[i] = boxes[i];
     this->check(moved, 20, 40);
+}
+
+TEST(QueryDocs, TheExamplesOfDocsQueriesCompileAndAnswer) {
+    std::vector<smb::Box3d> boxes{{{0, 0, 0}, {1, 1, 1}}, {{3, 0, 0}, {4, 1, 1}}, {{5, 5, 5}, {6, 6, 6}}};
+    smb::BoxIndex3d index(boxes);
+    std::vector<smb::BoxId> found;
+    index.query(smb::Box3d{{0, 0, 0}, {2, 2, 2}}, found);
+    EXPECT_EQ(found, std::vector<smb::BoxId>{0});
+    smb::Ray3d ray{{0, 0.5, 0.5}, {1, 0, 0}, 50};
+    std::vector<smb::RayHit<double>> hits;
+    index.cast_ray(ray, smb::RayHits::nearest, hits);
+    ASSERT_EQ(hits.size(), 1U);
+    EXPECT_EQ(hits[0], (smb::RayHit<double>{0, 0}));
+    index.cast_ray(smb::Ray3d::segment({0, 0, 0}, {9, 9, 9}), smb::RayHits::all, hits);
+    ASSERT_EQ(hits.size(), 2U);
+    EXPECT_EQ(hits[0], (smb::RayHit<double>{0, 0}));
+    EXPECT_EQ(hits[1].id, 2U);
+    EXPECT_DOUBLE_EQ(hits[1].t, 5.0 / 9.0);
+
+    smb::World3d world;
+    world.insert(7, boxes[0]);
+    world.insert(9, boxes[1]);
+    std::vector<smb::QueryHit> batch;
+    world.query(std::vector<smb::Box3d>{{{3.5, 0, 0}, {3.5, 0, 0}}, {{0, 0, 0}, {9, 9, 9}}}, batch);
+    std::sort(batch.begin(), batch.end());  // within one query the order is unspecified
+    EXPECT_EQ(batch, (std::vector<smb::QueryHit>{{0, 9}, {1, 7}, {1, 9}}));
 }
 
 }  // namespace
