@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 #include "reference/query_reference.hpp"
@@ -286,6 +287,35 @@ TYPED_TEST(BoxIndexTest, DegenerateScenes) {
     this->boxes[0].max.fill(3);
     this->set_ids();
     this->check_all(20, 200, 3);
+    if constexpr (std::is_same_v<Rt, double>) {
+        // A scene whose extent overflows double: boxes near both ends of its range.
+        this->mixed_scene(100, 16);
+        this->boxes[0].min.fill(-1.7e308);
+        this->boxes[1].max.fill(1.7e308);
+        this->boxes[1].min.fill(1e308);
+        this->set_ids();
+        this->check_all(50, 400, 16);
+        // A scene near one end of the range, rays from the other: grid coordinates overflow.
+        this->mixed_scene(100, 16);
+        for (auto& b : this->boxes) {
+            for (int k = 0; k < Dm; ++k) {
+                b.min[k] = b.min[k] * 1e292 + 1.6e308;
+                b.max[k] = b.max[k] * 1e292 + 1.6e308;
+            }
+        }
+        this->set_ids();
+        BoxIndex<Rt, Dm> index(this->ids, this->boxes);
+        for (int i = 0; i < 100; ++i) {
+            Ray<Rt, Dm> ray;
+            for (int k = 0; k < Dm; ++k) {
+                ray.origin[k] = -1.5e308;
+                // Half the way to a random point of the scene (the whole way overflows), twice.
+                ray.direction[k] = (1.6e308 + this->uniform(0, 16) * 1e292) / 2 + 0.75e308;
+            }
+            ray.max_t = 2;
+            expect_cast<BoxIndex<Rt, Dm>, Rt, Dm>(index, this->ids, this->boxes, ray);
+        }
+    }
 }
 
 TYPED_TEST(BoxIndexTest, EmptyIndexAnswersNothing) {

@@ -167,7 +167,12 @@ private:
             }
             extent_sum += e;
         }
-        const double side0 = finest_side(extent_sum / static_cast<double>(n));
+        // Coordinates near the ends of double's range can make the scene's extent overflow: then
+        // one cell holds everything (inv = 0 sends every coordinate to it), exact but unindexed.
+        bool finite_span = true;
+        for (int k = 0; k < Dim; ++k) finite_span = finite_span && std::isfinite(upper[k] - origin[k]);
+        const double side0 =
+            finite_span ? finest_side(extent_sum / static_cast<double>(n)) : std::numeric_limits<double>::infinity();
 
         // Level of each box: the finest whose side is at least the box's largest extent, up to
         // the level of a single cell per axis.
@@ -175,7 +180,7 @@ private:
         double span = 0;
         for (int k = 0; k < Dim; ++k) span = std::max(span, upper[k] - origin[k]);
         int top = 0;
-        while (top + 1 < kMaxLevels && std::ldexp(side0, top) < span) ++top;
+        while (finite_span && top + 1 < kMaxLevels && std::ldexp(side0, top) < span) ++top;
         std::vector<std::uint8_t> level_of(n);
         std::array<std::size_t, kMaxLevels> per_level{};
         for (std::size_t i = 0; i < n; ++i) {
@@ -196,8 +201,8 @@ private:
             level.inv = 1 / level.side;
             std::size_t count = 1;
             for (int k = 0; k < Dim; ++k) {
-                level.n[k] =
-                    std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((upper[k] - origin[k]) * level.inv)));
+                const double across = std::ceil((upper[k] - origin[k]) * level.inv);
+                level.n[k] = across >= 1 ? static_cast<std::int64_t>(across) : 1;  // (NaN: inv = 0, a single cell)
                 count *= static_cast<std::size_t>(level.n[k]);
             }
             level.first_cell = cells;

@@ -57,6 +57,12 @@ void walk_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, bool 
     };
 
     for (const GridLevel<Dim>& level : grid.levels) {
+        std::int64_t cells = 1;
+        for (int k = 0; k < Dim; ++k) cells *= level.n[k];
+        if (cells == 1) {  // nothing to walk (and no geometry where the scene's extent overflows)
+            test_cell(level.first_cell);
+            continue;
+        }
         // The ray in this level's grid coordinates, where cell c spans [c, c + 1) on each axis.
         std::array<double, Dim> go{};
         std::array<double, Dim> gd{};
@@ -69,6 +75,12 @@ void walk_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, bool 
             magnitude = std::max(magnitude, std::abs(go[k]));
             cells_across = std::max(cells_across, level.n[k]);
             if (std::abs(gd[k]) > std::abs(gd[a])) a = k;
+        }
+        bool finite = std::isfinite(magnitude);
+        for (int k = 0; k < Dim; ++k) finite = finite && std::isfinite(gd[k]);
+        if (!finite) {  // a ray from near one end of double's range to a scene near the other
+            for (std::int64_t c = 0; c < cells; ++c) test_cell(level.first_cell + static_cast<std::size_t>(c));
+            continue;
         }
         // The margin, in cells: far more than the rounding of the grid coordinates and of the
         // exact test, both relative to the coordinates' magnitude.
