@@ -7,6 +7,7 @@
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
+#include "smb/pair_events.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 #include "smb/version.hpp"

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: MIT
+// PairEvents on its own: pair lists diffed against std::set_difference, over sizes that cross
+// the partition layouts; replace, replace_all and swap_remove on small hand-made lists; bad
+// input refused with everything left as it was.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <iterator>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "smb/pair_events.hpp"
+
+namespace smb::test {
+namespace {
+
+std::vector<Pair> as_vector(std::span<const Pair> pairs) { return {pairs.begin(), pairs.end()}; }
+
+std::vector<Pair> difference(std::vector<Pair> x, std::vector<Pair> y) {
+    std::sort(x.begin(), x.end());
+    std::sort(y.begin(), y.end());
+    std::vector<Pair> out;
+    std::set_difference(x.begin(), x.end(), y.begin(), y.end(), std::back_inserter(out));
+    return out;
+}
+
+/// `count` distinct pairs among `names` names, in random order.
+std::vector<Pair> random_pairs(std::mt19937_64& random, std::size_t count, BoxId names) {
+    std::set<Pair> chosen;
+    std::uniform_int_distribution<BoxId> name(0, names - 1);
+    while (chosen.size() < count) {
+        const BoxId a = name(random);
+        const BoxId b = name(random);
+        if (a != b) chosen.insert({std::min(a, b), std::max(a, b)});
+    }
+    std::vector<Pair> pairs(chosen.begin(), chosen.end());
+    std::shuffle(pairs.begin(), pairs.end(), random);
+    return pairs;
+}
+
+TEST(PairEvents, FirstUpdateBeginsEveryPair) {
+    PairEvents events;
+    EXPECT_TRUE(events.begun().empty());
+    EXPECT_TRUE(events.ended().empty());
+    const std::vector<Pair> pairs{{3, 9}, {1, 2}, {1, 7}};
+    events.update(pairs);
+    EXPECT_EQ(as_vector(events.begun()), (std::vector<Pair>{{1, 2}, {1, 7}, {3, 9}}));
+    EXPECT_TRUE(events.ended().empty());
+    EXPECT_EQ(events.size(), 3U);
+    events.update(pairs);
+    EXPECT_TRUE(events.begun().empty());
+    EXPECT_TRUE(events.ended().empty());
+    events.update({});
+    EXPECT_EQ(as_vector(events.ended()), (std::vector<Pair>{{1, 2}, {1, 7}, {3, 9}}));
+    EXPECT_EQ(events.size(), 0U);
+}
+
+TEST(PairEvents, RandomListsMatchSetDifference) {
+    std::mt19937_64 random(41);
+    PairEvents events;
+    std::vector<Pair> previous;
+    // Sizes up and down across several partition layouts, each list a mix of kept and new pairs.
+    for (const std::size_t count : {0, 5, 3000, 2900, 40000, 9000, 70000, 1, 0, 20000}) {
+        std::vector<Pair> next = random_pairs(random, count, 1 + count / 2 + 10);
+        // Keep a random part of the previous list, as temporal coherence would.
+        for (std::size_t i = 0; i < previous.size() && i < count / 2; i += 2) next[i] = previous[i];
+        std::sort(next.begin(), next.end());
+        next.erase(std::unique(next.begin(), next.end()), next.end());
+        std::shuffle(next.begin(), next.end(), random);
+        events.update(next);
+        EXPECT_EQ(as_vector(events.begun()), difference(next, previous)) << count;
+        EXPECT_EQ(as_vector(events.ended()), difference(previous, next)) << count;
+        EXPECT_EQ(events.size(), next.size());
+        previous = next;
+    }
+}
+
+TEST(PairEvents, ReplacedNameEndsAndBeginsItsPairs) {
+    PairEvents events;
+    events.update(std::vector<Pair>{{1, 2}, {2, 3}, {4, 5}});
+    events.replace(2);
+    events.update(std::vector<Pair>{{1, 2}, {2, 6}, {4, 5}});
+    EXPECT_EQ(as_vector(events.begun()), (std::vector<Pair>{{1, 2}, {2, 6}}));
+    EXPECT_EQ(as_vector(events.ended()), (std::vector<Pair>{{1, 2}, {2, 3}}));
+    // The calls are spent by the update that took them.
+    events.update(std::vector<Pair>{{1, 2}, {2, 6}, {4, 5}});
+    EXPECT_TRUE(events.begun().empty());
+    EXPECT_TRUE(events.ended().empty());
+    // The same through the overload, and replace_all.
+    events.update(std::vector<Pair>{{1, 2}, {2, 6}, {4, 5}}, std::vector<BoxId>{5});
+    EXPECT_EQ(as_vector(events.begun()), (std::vector<Pair>{{4, 5}}));
+    EXPECT_EQ(as_vector(events.ended()), (std::vector<Pair>{{4, 5}}));
+    events.replace_all();
+    events.update(std::vector<Pair>{{1, 2}});
+    EXPECT_EQ(as_vector(events.begun()), (std::vector<Pair>{{1, 2}}));
+    EXPECT_EQ(as_vector(events.ended()), (std::vector<Pair>{{1, 2}, {2, 6}, {4, 5}}));
+}
+
+TEST(PairEvents, SwapRemoveRenamesTheMovedBody) {
+    // Bodies at 0..4; body 1 is removed, body 4 moves to 1.
+    PairEvents events;
+    events.update(std::vector<Pair>{{0, 1}, {1, 2}, {2, 4}, {3, 4}, {0, 3}});
+    events.swap_remove(1, 4);
+    // Body 4 (now 1) keeps its pairs with 2 and 3 and gains one with 0; body 1's pairs end.
+    events.update(std::vector<Pair>{{1, 2}, {1, 3}, {0, 1}, {0, 3}});
+    EXPECT_EQ(as_vector(events.begun()), (std::vector<Pair>{{0, 1}}));
+    EXPECT_EQ(as_vector(events.ended()), (std::vector<Pair>{{0, 1}, {1, 2}}));
+}
+
+TEST(PairEvents, SwapRemovesCompose) {
+    // Bodies A..F at 0..5. swap_remove(0, 5): F to 0. swap_remove(4, 4): E popped.
+    // swap_remove(1, 3): D to 1. Then C at 2, F at 0, D at 1; one body G appended at 3.
+    PairEvents events;
+    events.update(std::vector<Pair>{{0, 1}, {2, 5}, {3, 5}, {4, 5}, {2, 3}, {1, 2}});
+    events.swap_remove(0, 5);
+    events.swap_remove(4, 4);
+    events.swap_remove(1, 3);
+    events.replace(3);  // harmless: index 3 holds no previous body any more
+    // F-C (0,2) goes on; F-D (0,1) goes on; C-D (1,2) goes on; G-F (0,3) begins.
+    events.update(std::vector<Pair>{{0, 2}, {0, 1}, {1, 2}, {0, 3}});
+    EXPECT_EQ(as_vector(events.begun()), (std::vector<Pair>{{0, 3}}));
+    // A-B (0,1), E-F (4,5) and B-C (1,2) end, under their previous names.
+    EXPECT_EQ(as_vector(events.ended()), (std::vector<Pair>{{0, 1}, {1, 2}, {4, 5}}));
+}
+
+TEST(PairEvents, SwapRemovingTheMovedBodyAgain) {
+    // A B C D at 0..3: swap_remove(2, 3) moves D to 2, swap_remove(2, 2) pops D.
+    PairEvents events;
+    events.update(std::vector<Pair>{{0, 3}, {1, 2}, {0, 1}});
+    events.swap_remove(2, 3);
+    events.swap_remove(2, 2);
+    events.update(std::vector<Pair>{{0, 1}});
+    EXPECT_TRUE(events.begun().empty());
+    EXPECT_EQ(as_vector(events.ended()), (std::vector<Pair>{{0, 3}, {1, 2}}));
+}
+
+TEST(PairEvents, BadInputChangesNothing) {
+    PairEvents events;
+    events.update(std::vector<Pair>{{1, 2}, {2, 3}});
+    events.update(std::vector<Pair>{{1, 2}, {4, 5}});
+    events.replace(1);
+    const auto begun = as_vector(events.begun());
+    const auto ended = as_vector(events.ended());
+    EXPECT_THROW(events.update(std::vector<Pair>{{1, 2}, {3, 3}}), ArgumentError);
+    EXPECT_THROW(events.update(std::vector<Pair>{{5, 4}}), ArgumentError);
+    EXPECT_THROW(events.update(std::vector<Pair>{{6, 7}, {1, 8}, {6, 7}}), ArgumentError);  // new, twice
+    EXPECT_THROW(events.update(std::vector<Pair>{{4, 5}, {1, 8}, {4, 5}}), ArgumentError);  // kept, twice
+    EXPECT_THROW(events.update(std::vector<Pair>{{1, 2}, {1, 2}}), ArgumentError);          // replaced, twice
+    EXPECT_THROW(events.swap_remove(3, 2), ArgumentError);
+    EXPECT_EQ(as_vector(events.begun()), begun);
+    EXPECT_EQ(as_vector(events.ended()), ended);
+    EXPECT_EQ(events.size(), 2U);
+    // The replace() before the failures still holds.
+    events.update(std::vector<Pair>{{1, 2}, {4, 5}});
+    EXPECT_EQ(as_vector(events.begun()), (std::vector<Pair>{{1, 2}}));
+    EXPECT_EQ(as_vector(events.ended()), (std::vector<Pair>{{1, 2}}));
+}
+
+TEST(PairEvents, ClearAndMoveStartAfresh) {
+    PairEvents events;
+    events.update(std::vector<Pair>{{1, 2}});
+    EXPECT_GT(events.bytes_held(), 0U);
+    PairEvents moved(std::move(events));
+    EXPECT_EQ(moved.size(), 1U);
+    EXPECT_EQ(events.size(), 0U);  // NOLINT(bugprone-use-after-move): moved-from is valid and empty
+    EXPECT_TRUE(events.begun().empty());
+    events.update(std::vector<Pair>{{1, 2}});
+    EXPECT_EQ(events.begun().size(), 1U);
+    moved.clear();
+    moved.update(std::vector<Pair>{{1, 2}});
+    EXPECT_EQ(as_vector(moved.begun()), (std::vector<Pair>{{1, 2}}));
+    EXPECT_TRUE(moved.ended().empty());
+}
+
+}  // namespace
+}  // namespace smb::test
