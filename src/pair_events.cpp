@@ -11,6 +11,7 @@
 
 #include "events/body_fates.hpp"
 #include "events/pair_partitions.hpp"
+#include "events/pair_radix_sort.hpp"
 #include "events/partition_diff.hpp"
 
 namespace smb {
@@ -29,7 +30,11 @@ public:
         scratch_.renamed.clear();
         if (everything_replaced_) {
             // Every previous pair ends, every pair begins, even one with the same two names.
-            scratch_.ended.assign(previous_.pairs.begin(), previous_.pairs.end());
+            if (previous_.is_packed) {
+                for (const PackedPair pair : previous_.packed) scratch_.ended.push_back(unpacked(pair));
+            } else {
+                scratch_.ended.assign(previous_.wide.begin(), previous_.wide.end());
+            }
             scratch_.candidates.assign(pairs.begin(), pairs.end());
         } else {
             std::optional<BodyFates> fates;
@@ -38,12 +43,10 @@ public:
             diff_partitions(followed);
         }
         settle_candidates();
-        std::sort(scratch_.ended.begin(), scratch_.ended.end());
+        sort_pairs_fast(scratch_.ended, sort_buffer_);
 
         // Nothing below throws.
-        previous_.pairs.swap(next_.pairs);
-        previous_.offsets.swap(next_.offsets);
-        previous_.bits = next_.bits;
+        std::swap(previous_, next_);
         begun_.swap(scratch_.candidates);
         ended_.swap(scratch_.ended);
         calls_.clear();
@@ -59,25 +62,39 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return sizeof(*this) + previous_.bytes_held() + next_.bytes_held() + scratch_.bytes_held() +
-               (begun_.capacity() + ended_.capacity()) * sizeof(Pair) + calls_.capacity() * sizeof(BodyCall);
+               (begun_.capacity() + ended_.capacity() + sort_buffer_.capacity()) * sizeof(Pair) +
+               calls_.capacity() * sizeof(BodyCall);
     }
 
 private:
     /// Each partition of the coarser of the two lists' layouts against the same hash range of
     /// the other: a range of whole partitions, contiguous in the layout.
     void diff_partitions(const BodyFates* fates) {
-        const int unit_bits = std::min(previous_.bits, next_.bits);
-        const std::size_t units = std::size_t{1} << unit_bits;
-        const std::size_t previous_per_unit = std::size_t{1} << (previous_.bits - unit_bits);
-        const std::size_t next_per_unit = std::size_t{1} << (next_.bits - unit_bits);
-        const std::span<const Pair> previous(previous_.pairs);
-        const std::span<const Pair> next(next_.pairs);
-        for (std::size_t u = 0; u < units; ++u) {
-            const std::size_t p0 = previous_.offsets[u * previous_per_unit];
-            const std::size_t p1 = previous_.offsets[(u + 1) * previous_per_unit];
-            const std::size_t n0 = next_.offsets[u * next_per_unit];
-            const std::size_t n1 = next_.offsets[(u + 1) * next_per_unit];
-            diff_partition(previous.subspan(p0, p1 - p0), next.subspan(n0, n1 - n0), unit_bits, fates, scratch_);
+        const auto run = [&](const auto& previous_pairs, const auto& next_pairs) {
+            const std::span previous(previous_pairs);
+            const std::span next(next_pairs);
+            const int unit_bits = std::min(previous_.bits, next_.bits);
+            const std::size_t units = std::size_t{1} << unit_bits;
+            const std::size_t previous_per_unit = std::size_t{1} << (previous_.bits - unit_bits);
+            const std::size_t next_per_unit = std::size_t{1} << (next_.bits - unit_bits);
+            for (std::size_t u = 0; u < units; ++u) {
+                const std::size_t p0 = previous_.offsets[u * previous_per_unit];
+                const std::size_t p1 = previous_.offsets[(u + 1) * previous_per_unit];
+                const std::size_t n0 = next_.offsets[u * next_per_unit];
+                const std::size_t n1 = next_.offsets[(u + 1) * next_per_unit];
+                diff_partition(previous.subspan(p0, p1 - p0), next.subspan(n0, n1 - n0), unit_bits, fates, scratch_);
+            }
+        };
+        if (previous_.is_packed) {
+            if (next_.is_packed) {
+                run(std::as_const(previous_.packed), std::as_const(next_.packed));
+            } else {
+                run(std::as_const(previous_.packed), std::as_const(next_.wide));
+            }
+        } else if (next_.is_packed) {
+            run(std::as_const(previous_.wide), std::as_const(next_.packed));
+        } else {
+            run(std::as_const(previous_.wide), std::as_const(next_.wide));
         }
     }
 
@@ -86,7 +103,7 @@ private:
     /// listed twice: the two copies end up side by side.
     void settle_candidates() {
         auto& candidates = scratch_.candidates;
-        std::sort(candidates.begin(), candidates.end());
+        sort_pairs_fast(candidates, sort_buffer_);
         const auto repeat = std::adjacent_find(candidates.begin(), candidates.end());
         if (repeat != candidates.end()) throw_repeated_pair(*repeat);
         auto& renamed = scratch_.renamed;
@@ -113,6 +130,7 @@ private:
     std::vector<Pair> begun_;
     std::vector<Pair> ended_;
     std::vector<BodyCall> calls_;
+    std::vector<Pair> sort_buffer_;
     bool everything_replaced_ = false;
 };
 

@@ -78,6 +78,28 @@ TEST(PairEvents, RandomListsMatchSetDifference) {
     }
 }
 
+TEST(PairEvents, NamesBeyond32BitsAndBack) {
+    // Lists whose names fit in 32 bits are held packed, others as they are; an update may cross
+    // from one form to the other either way.
+    std::mt19937_64 random(43);
+    PairEvents events;
+    std::vector<Pair> previous;
+    for (int round = 0; round < 6; ++round) {
+        const BoxId offset = round % 2 == 1 ? (BoxId{1} << 40) : 0;
+        std::vector<Pair> next = random_pairs(random, 5000, 3000);
+        for (std::size_t i = 0; i < next.size(); i += 3) next[i] = {next[i].a + offset, next[i].b + offset};
+        for (std::size_t i = 1; i < previous.size() && i < next.size(); i += 3) next[i] = previous[i];
+        if (round == 4) next.push_back({BoxId{1} << 63, ~BoxId{0}});
+        std::sort(next.begin(), next.end());
+        next.erase(std::unique(next.begin(), next.end()), next.end());
+        std::shuffle(next.begin(), next.end(), random);
+        events.update(next);
+        EXPECT_EQ(as_vector(events.begun()), difference(next, previous)) << round;
+        EXPECT_EQ(as_vector(events.ended()), difference(previous, next)) << round;
+        previous = next;
+    }
+}
+
 TEST(PairEvents, ReplacedNameEndsAndBeginsItsPairs) {
     PairEvents events;
     events.update(std::vector<Pair>{{1, 2}, {2, 3}, {4, 5}});

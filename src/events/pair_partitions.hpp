@@ -4,7 +4,13 @@
 // pairs each: two lists hashed alike are compared partition by partition, each partition's
 // table small enough to stay in the cache, without sorting either list. One counting pass and
 // one scattering pass, as a radix sort's single digit.
+//
+// Where every name fits in 32 bits (indices, dense ids: the common case) a pair is held as one
+// 64-bit word, a << 32 | b, which halves the memory both passes and the comparison move; other
+// lists hold the pairs as they are. The hash is of the pair, not of its form, so lists of
+// either form share one layout.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -17,14 +23,25 @@
 
 namespace smb::detail {
 
-/// Multiplicative hashing: the top bits of the last product depend on every bit of both ids.
+using PackedPair = std::uint64_t;
+
+[[nodiscard]] inline Pair unpacked(const Pair& pair) noexcept { return pair; }
+[[nodiscard]] inline Pair unpacked(PackedPair pair) noexcept { return {pair >> 32, pair & 0xFFFFFFFFU}; }
+[[nodiscard]] inline bool same_pair(PackedPair x, PackedPair y) noexcept { return x == y; }
+template <class X, class Y>
+[[nodiscard]] bool same_pair(const X& x, const Y& y) noexcept {
+    return unpacked(x) == unpacked(y);
+}
+
+/// Multiplicative hashing: the top bits of the last product depend on every bit of both names.
 /// The partition takes the top bits, a partition's table the bits below them.
 [[nodiscard]] inline std::uint64_t pair_hash(const Pair& pair) noexcept {
     return ((pair.a * 0x9E3779B97F4A7C15ULL) ^ pair.b) * 0xD6E8FEB86659FD93ULL;
 }
+[[nodiscard]] inline std::uint64_t pair_hash(PackedPair pair) noexcept { return pair_hash(unpacked(pair)); }
 
 /// About this many pairs per partition: their table (two slots a pair, 4 bytes a slot) and the
-/// pairs themselves fit in a core's L2 with room to spare.
+/// pairs themselves fit in a core's L1 and L2 caches.
 inline constexpr std::size_t kPairsPerPartition = 1024;
 inline constexpr int kMaxPartitionBits = 24;
 
@@ -36,19 +53,18 @@ inline constexpr int kMaxPartitionBits = 24;
 }
 
 struct PairPartitions {
-    std::vector<Pair> pairs;
+    /// The pairs in one of two forms: `packed` when `is_packed`, else `wide`.
+    std::vector<PackedPair> packed;
+    std::vector<Pair> wide;
+    bool is_packed = true;
     /// offsets[p] .. offsets[p + 1]: partition p's pairs; 2^bits + 1 entries.
     std::vector<std::uint32_t> offsets{0, 0};
     int bits = 0;
 
-    [[nodiscard]] std::size_t size() const noexcept { return pairs.size(); }
+    [[nodiscard]] std::size_t size() const noexcept { return is_packed ? packed.size() : wide.size(); }
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return pairs.capacity() * sizeof(Pair) + offsets.capacity() * sizeof(std::uint32_t);
-    }
-    void clear() {
-        std::vector<Pair>().swap(pairs);
-        offsets.assign(2, 0);
-        bits = 0;
+        return packed.capacity() * sizeof(PackedPair) + wide.capacity() * sizeof(Pair) +
+               offsets.capacity() * sizeof(std::uint32_t);
     }
 
     /// Lays out `source` by partition. Checks a < b of every pair first and throws
@@ -57,30 +73,40 @@ struct PairPartitions {
         if (source.size() >= UINT32_MAX)
             throw ArgumentError("PairEvents::update: at most " + std::to_string(UINT32_MAX - 1) + " pairs");
         const int new_bits = partition_bits_for(source.size());
-        const int shift = 64 - new_bits;
+        // A shift by 64 is undefined: one partition is the hash shifted by 63, then halved.
+        const auto partition_of = [new_bits](const Pair& pair) {
+            return static_cast<std::size_t>((pair_hash(pair) >> (63 - new_bits)) >> 1);
+        };
         const std::size_t parts = std::size_t{1} << new_bits;
         std::vector<std::uint32_t> counts(parts + 1, 0);
+        BoxId names = 0;
         for (std::size_t i = 0; i < source.size(); ++i) {
             const Pair& pair = source[i];
             if (pair.a >= pair.b) {
                 throw ArgumentError("PairEvents::update: pair " + std::to_string(i) + " is (" + std::to_string(pair.a) +
                                     ", " + std::to_string(pair.b) + "); every pair must have a < b");
             }
-            // A shift by 64 is undefined: with one partition every pair goes to partition 0.
-            if (new_bits != 0) ++counts[(pair_hash(pair) >> shift) + 1];
+            names |= pair.b;
+            ++counts[partition_of(pair) + 1];
         }
-        if (new_bits == 0) counts[1] = static_cast<std::uint32_t>(source.size());
         for (std::size_t p = 0; p < parts; ++p) counts[p + 1] += counts[p];
-        resize_with_slack(pairs, source.size());
+        const bool pack = names <= 0xFFFFFFFFU;
+        if (pack) {
+            resize_with_slack(packed, source.size());
+        } else {
+            resize_with_slack(wide, source.size());
+        }
+        std::vector<std::uint32_t> cursors(counts.begin(), counts.end() - 1);
         offsets.swap(counts);
         bits = new_bits;
-        if (new_bits == 0) {
-            std::copy(source.begin(), source.end(), pairs.begin());
-            return;
+        is_packed = pack;
+        if (pack) {
+            wide.clear();
+            for (const Pair& pair : source) packed[cursors[partition_of(pair)]++] = pair.a << 32 | pair.b;
+        } else {
+            packed.clear();
+            for (const Pair& pair : source) wide[cursors[partition_of(pair)]++] = pair;
         }
-        // counts now holds the old offsets; reuse it as the write cursors.
-        counts.assign(offsets.begin(), offsets.end() - 1);
-        for (const Pair& pair : source) pairs[counts[pair_hash(pair) >> shift]++] = pair;
     }
 };
 
