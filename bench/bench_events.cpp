@@ -36,9 +36,7 @@ struct Options {
     std::uint64_t seed = 1;
 };
 
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// CPU time of the calling thread: on a machine shared with other work it leaves out the time
 /// the thread waited for a core, which the wall-clock times include.
@@ -142,8 +140,8 @@ int run(const Options& options) {
                 1e3 * *std::min_element(detect_alone.begin(), detect_alone.end()));
     std::printf("  detect + events      median %.3f ms (min %.3f)\n", 1e3 * b,
                 1e3 * *std::min_element(detect_with_events.begin(), detect_with_events.end()));
-    std::printf("  events update alone  median %.3f ms (%.1f%% of the median detection)\n",
-                1e3 * median(events_only), 100.0 * median(events_only) / a);
+    std::printf("  events update alone  median %.3f ms (%.1f%% of the median detection)\n", 1e3 * median(events_only),
+                100.0 * median(events_only) / a);
     std::printf("  overhead             %+.1f%% of the median detection\n", 100.0 * (b - a) / a);
     const double ac = median(alone_cpus);
     const double bc = median(events_cpus);

@@ -47,8 +47,7 @@ inline void sort_pairs_fast(std::vector<Pair>& pairs, std::vector<Pair>& buffer)
     for (int p = 0; p < passes; ++p) {
         auto& histogram = counts[static_cast<std::size_t>(p)];
         // A digit every pair shares moves nothing.
-        if (std::find(histogram.begin(), histogram.end(), static_cast<std::uint32_t>(pairs.size())) !=
-            histogram.end())
+        if (std::find(histogram.begin(), histogram.end(), static_cast<std::uint32_t>(pairs.size())) != histogram.end())
             continue;
         std::uint32_t sum = 0;
         for (auto& count : histogram) sum += std::exchange(count, sum);
