@@ -6,9 +6,9 @@
 // one scattering pass, as a radix sort's single digit.
 //
 // Where every name fits in 32 bits (indices, dense ids: the common case) a pair is held as one
-// 64-bit word, a << 32 | b, which halves the memory both passes and the comparison move; other
-// lists hold the pairs as they are. The hash is of the pair, not of its form, so lists of
-// either form share one layout.
+// 64-bit word (pack_pair() below), which halves the memory both passes and the comparison move and
+// is its own hash; other lists hold the pairs as they are. The hash is of the pair, not of its
+// form, so lists of either form share one layout.
 
 #include <algorithm>
 #include <cstddef>
@@ -25,20 +25,44 @@ namespace smb::detail {
 
 using PackedPair = std::uint64_t;
 
+inline constexpr std::uint64_t kMix = 0xD6E8FEB86659FD93ULL;
+/// The inverse of kMix modulo 2^64 (Newton's iteration doubles the correct bits each round).
+[[nodiscard]] constexpr std::uint64_t inverse_of(std::uint64_t odd) noexcept {
+    std::uint64_t inverse = odd;
+    for (int round = 0; round < 6; ++round) inverse *= 2 - odd * inverse;
+    return inverse;
+}
+inline constexpr std::uint64_t kUnmix = inverse_of(kMix);
+static_assert(kMix * kUnmix == 1);
+
+/// The packed form of a pair of 32-bit names: the word a << 32 | b through a bijection (an
+/// xor-shift, then a multiplication by an odd constant), so that the word is its own hash: the
+/// passes over the lists never hash a packed pair, and two packed pairs are equal when their
+/// words are. Multiplicative hashing: the top bits depend on every bit of both names.
+[[nodiscard]] inline PackedPair pack_pair(BoxId a, BoxId b) noexcept {
+    const std::uint64_t word = a << 32 | b;
+    return (word ^ (word >> 32)) * kMix;
+}
 [[nodiscard]] inline Pair unpacked(const Pair& pair) noexcept { return pair; }
-[[nodiscard]] inline Pair unpacked(PackedPair pair) noexcept { return {pair >> 32, pair & 0xFFFFFFFFU}; }
+[[nodiscard]] inline Pair unpacked(PackedPair pair) noexcept {
+    const std::uint64_t mixed = pair * kUnmix;
+    const std::uint64_t word = mixed ^ (mixed >> 32);
+    return {word >> 32, word & 0xFFFFFFFFU};
+}
 [[nodiscard]] inline bool same_pair(PackedPair x, PackedPair y) noexcept { return x == y; }
 template <class X, class Y>
 [[nodiscard]] bool same_pair(const X& x, const Y& y) noexcept {
     return unpacked(x) == unpacked(y);
 }
 
-/// Multiplicative hashing: the top bits of the last product depend on every bit of both names.
-/// The partition takes the top bits, a partition's table the bits below them.
+/// The hash of a pair, the same in either form: the partition takes its top bits, a partition's
+/// table the bits below them. A pair of 32-bit names hashes as its packed word (a < b, so b
+/// bounds both names).
+[[nodiscard]] inline std::uint64_t pair_hash(PackedPair pair) noexcept { return pair; }
 [[nodiscard]] inline std::uint64_t pair_hash(const Pair& pair) noexcept {
-    return ((pair.a * 0x9E3779B97F4A7C15ULL) ^ pair.b) * 0xD6E8FEB86659FD93ULL;
+    if (pair.b <= 0xFFFFFFFFU) return pack_pair(pair.a, pair.b);
+    return ((pair.a * 0x9E3779B97F4A7C15ULL) ^ pair.b) * kMix;
 }
-[[nodiscard]] inline std::uint64_t pair_hash(PackedPair pair) noexcept { return pair_hash(unpacked(pair)); }
 
 /// About this many pairs per partition: their table (two slots a pair, 4 bytes a slot) and the
 /// pairs themselves fit in a core's L1 and L2 caches.
@@ -102,7 +126,10 @@ struct PairPartitions {
         is_packed = pack;
         if (pack) {
             wide.clear();
-            for (const Pair& pair : source) packed[cursors[partition_of(pair)]++] = pair.a << 32 | pair.b;
+            for (const Pair& pair : source) {
+                const PackedPair word = pack_pair(pair.a, pair.b);  // its own hash
+                packed[cursors[(word >> (63 - new_bits)) >> 1]++] = word;
+            }
         } else {
             packed.clear();
             for (const Pair& pair : source) wide[cursors[partition_of(pair)]++] = pair;
