@@ -148,6 +148,19 @@ TEST(PairEvents, SwapRemovesCompose) {
     EXPECT_EQ(as_vector(events.ended()), (std::vector<Pair>{{0, 1}, {1, 2}, {4, 5}}));
 }
 
+TEST(PairEvents, FatesOfLargeNames) {
+    // Names past 2^27 take the hashed filter instead of one bit per name.
+    const BoxId big = BoxId{1} << 40;
+    PairEvents events;
+    events.update(std::vector<Pair>{{big + 1, big + 2}, {big + 2, big + 3}, {big + 4, big + 5}, {3, 4}});
+    events.replace(big + 2);
+    events.swap_remove(big + 4, big + 9);  // nothing was at big + 9: big + 4 is gone
+    events.update(std::vector<Pair>{{big + 1, big + 2}, {big + 2, big + 6}, {3, 4}});
+    EXPECT_EQ(as_vector(events.begun()), (std::vector<Pair>{{big + 1, big + 2}, {big + 2, big + 6}}));
+    EXPECT_EQ(as_vector(events.ended()),
+              (std::vector<Pair>{{big + 1, big + 2}, {big + 2, big + 3}, {big + 4, big + 5}}));
+}
+
 TEST(PairEvents, SwapRemovingTheMovedBodyAgain) {
     // A B C D at 0..3: swap_remove(2, 3) moves D to 2, swap_remove(2, 2) pops D.
     PairEvents events;
