@@ -117,8 +117,8 @@ int run(const Options& options) {
     smb::Detector<double, Dim> detector_alone(smb::DetectorSettings{settings, 0});
     smb::Detector<double, Dim> detector_events(smb::DetectorSettings{settings, 0});
     smb::workload::SwapRemoveMirror<smb::Box<double, Dim>> mirror;
-    smb::PairEvents events;
-    smb::PairEvents twin;
+    smb::PairEvents events(options.threads);
+    smb::PairEvents twin(options.threads);
     std::vector<smb::Pair> pairs_alone;
     std::vector<smb::Pair> pairs_events;
     std::vector<smb::Pair> before;  // the last step's pairs by ids, for --check

@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <exception>
 #include <optional>
 #include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/thread_team.hpp"
 #include "events/body_fates.hpp"
 #include "events/pair_partitions.hpp"
 #include "events/pair_radix_sort.hpp"
@@ -23,8 +25,15 @@ namespace detail {
 /// throw leaves everything as it was.
 class PairEventsState {
 public:
+    explicit PairEventsState(unsigned threads) : threads_(threads) {}
+
+    [[nodiscard]] unsigned threads() const noexcept { return threads_; }
+
     void update(std::span<const Pair> pairs, std::span<const BoxId> replaced) {
-        next_.assign(pairs);  // checks a < b
+        DetectionSettings team;
+        team.threads = threads_;
+        const int threads = thread_count(team);
+        next_.assign(pairs, threads);  // checks a < b
         scratch_.candidates.clear();
         scratch_.ended.clear();
         scratch_.renamed.clear();
@@ -40,7 +49,7 @@ public:
             std::optional<BodyFates> fates;
             if (!calls_.empty() || !replaced.empty()) fates.emplace(calls_, replaced);
             const BodyFates* followed = fates && !fates->empty() ? &*fates : nullptr;
-            diff_partitions(followed);
+            diff_partitions(followed, threads);
         }
         settle_candidates();
         sort_pairs_fast(scratch_.ended, sort_buffer_);
@@ -63,26 +72,47 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return sizeof(*this) + previous_.bytes_held() + next_.bytes_held() + scratch_.bytes_held() +
                (begun_.capacity() + ended_.capacity() + sort_buffer_.capacity()) * sizeof(Pair) +
-               calls_.capacity() * sizeof(BodyCall);
+               calls_.capacity() * sizeof(BodyCall) +
+               own_.bytes_held([](const DiffScratch& scratch) { return scratch.bytes_held(); });
     }
 
 private:
     /// Each partition of the coarser of the two lists' layouts against the same hash range of
-    /// the other: a range of whole partitions, contiguous in the layout.
-    void diff_partitions(const BodyFates* fates) {
+    /// the other: a range of whole partitions, contiguous in the layout. On several threads,
+    /// each with its own scratch, merged after; the order of the events does not matter before
+    /// they are sorted. A repeated pair is reported from the first partition that found one.
+    void diff_partitions(const BodyFates* fates, int threads) {
+        const int unit_bits = std::min(previous_.bits, next_.bits);
+        const auto units = static_cast<std::ptrdiff_t>(std::size_t{1} << unit_bits);
+        const int team = std::max(1, std::min<int>(threads, static_cast<int>(units / 16)));
+        own_.resize(team);
+        for (DiffScratch& scratch : own_) {
+            scratch.candidates.clear();
+            scratch.ended.clear();
+            scratch.renamed.clear();
+        }
+        std::vector<std::ptrdiff_t> failed_unit(static_cast<std::size_t>(team), units);
+        std::vector<std::exception_ptr> failure(static_cast<std::size_t>(team));
         const auto run = [&](const auto& previous_pairs, const auto& next_pairs) {
             const std::span previous(previous_pairs);
             const std::span next(next_pairs);
-            const int unit_bits = std::min(previous_.bits, next_.bits);
-            const std::size_t units = std::size_t{1} << unit_bits;
             const std::size_t previous_per_unit = std::size_t{1} << (previous_.bits - unit_bits);
             const std::size_t next_per_unit = std::size_t{1} << (next_.bits - unit_bits);
-            for (std::size_t u = 0; u < units; ++u) {
+#pragma omp parallel for num_threads(team) schedule(dynamic, 16) if (team > 1)
+            for (std::ptrdiff_t unit = 0; unit < units; ++unit) {
+                const auto u = static_cast<std::size_t>(unit);
+                const auto t = static_cast<std::size_t>(this_thread());
+                if (failed_unit[t] < unit) continue;
                 const std::size_t p0 = previous_.offsets[u * previous_per_unit];
                 const std::size_t p1 = previous_.offsets[(u + 1) * previous_per_unit];
                 const std::size_t n0 = next_.offsets[u * next_per_unit];
                 const std::size_t n1 = next_.offsets[(u + 1) * next_per_unit];
-                diff_partition(previous.subspan(p0, p1 - p0), next.subspan(n0, n1 - n0), unit_bits, fates, scratch_);
+                try {
+                    diff_partition(previous.subspan(p0, p1 - p0), next.subspan(n0, n1 - n0), unit_bits, fates, own_[t]);
+                } catch (...) {
+                    failed_unit[t] = unit;
+                    failure[t] = std::current_exception();
+                }
             }
         };
         if (previous_.is_packed) {
@@ -96,6 +126,22 @@ private:
         } else {
             run(std::as_const(previous_.wide), std::as_const(next_.wide));
         }
+        const auto first = std::min_element(failed_unit.begin(), failed_unit.end());
+        if (*first != units) std::rethrow_exception(failure[static_cast<std::size_t>(first - failed_unit.begin())]);
+        // One thread's scratch becomes the whole; the others are appended to it.
+        std::swap(scratch_.candidates, own_[0].candidates);
+        std::swap(scratch_.ended, own_[0].ended);
+        std::swap(scratch_.renamed, own_[0].renamed);
+        for (std::size_t t = 1; t < own_.size(); ++t) {
+            append(scratch_.candidates, own_[t].candidates);
+            append(scratch_.ended, own_[t].ended);
+            append(scratch_.renamed, own_[t].renamed);
+        }
+    }
+
+    template <class T>
+    static void append(std::vector<T>& to, const std::vector<T>& from) {
+        to.insert(to.end(), from.begin(), from.end());
     }
 
     /// The candidates that are not renamed previous pairs begin; the renamed pairs not found
@@ -124,6 +170,8 @@ private:
         candidates.resize(kept);
     }
 
+    unsigned threads_ = 1;
+    PerThread<DiffScratch> own_;  // each thread's tables and findings in diff_partitions()
     PairPartitions previous_;
     PairPartitions next_;
     DiffScratch scratch_;
@@ -136,13 +184,13 @@ private:
 
 }  // namespace detail
 
-PairEvents::PairEvents() : state_(std::make_unique<detail::PairEventsState>()) {}
+PairEvents::PairEvents(unsigned threads) : state_(std::make_unique<detail::PairEventsState>(threads)) {}
 PairEvents::~PairEvents() = default;
 PairEvents::PairEvents(PairEvents&&) noexcept = default;
 PairEvents& PairEvents::operator=(PairEvents&&) noexcept = default;
 
 detail::PairEventsState& PairEvents::state() {
-    if (!state_) state_ = std::make_unique<detail::PairEventsState>();
+    if (!state_) state_ = std::make_unique<detail::PairEventsState>(1);
     return *state_;
 }
 
@@ -170,7 +218,9 @@ std::span<const Pair> PairEvents::ended() const noexcept { return state_ ? state
 
 std::size_t PairEvents::size() const noexcept { return state_ ? state_->size() : 0; }
 
-void PairEvents::clear() { state_ = std::make_unique<detail::PairEventsState>(); }
+void PairEvents::clear() { state_ = std::make_unique<detail::PairEventsState>(threads()); }
+
+unsigned PairEvents::threads() const noexcept { return state_ ? state_->threads() : 1; }
 
 std::size_t PairEvents::bytes_held() const noexcept { return state_ ? state_->bytes_held() : 0; }
 

@@ -78,6 +78,40 @@ TEST(PairEvents, RandomListsMatchSetDifference) {
     }
 }
 
+TEST(PairEvents, ThreadsGiveTheSameEvents) {
+    std::mt19937_64 random(47);
+    PairEvents one;
+    PairEvents four(4);
+    EXPECT_EQ(four.threads(), 4U);
+    std::vector<Pair> previous;
+    // Enough pairs for four threads in each pass (64k pairs a thread at least).
+    for (const std::size_t count : {140000, 270000}) {
+        std::uniform_int_distribution<BoxId> name(0, count);
+        std::vector<Pair> next;
+        for (std::size_t i = 0; i < count; ++i) {
+            const BoxId a = name(random);
+            next.push_back({a, a + 1 + name(random) % 64});
+        }
+        for (std::size_t i = 0; i < previous.size() && i < count; i += 2) next[i] = previous[i];
+        std::sort(next.begin(), next.end());
+        next.erase(std::unique(next.begin(), next.end()), next.end());
+        std::shuffle(next.begin(), next.end(), random);
+        one.update(next);
+        four.update(next);
+        EXPECT_EQ(as_vector(four.begun()), as_vector(one.begun()));
+        EXPECT_EQ(as_vector(four.ended()), as_vector(one.ended()));
+        previous = next;
+    }
+    // A pair kept and listed twice, far into the list: refused on any number of threads.
+    std::vector<Pair> repeated = previous;
+    repeated.push_back(previous[previous.size() / 2]);
+    EXPECT_THROW(four.update(repeated), ArgumentError);
+    std::vector<Pair> reversed = previous;
+    std::swap(reversed.back().a, reversed.back().b);
+    EXPECT_THROW(four.update(reversed), ArgumentError);
+    EXPECT_EQ(four.size(), previous.size());
+}
+
 TEST(PairEvents, NamesBeyond32BitsAndBack) {
     // Lists whose names fit in 32 bits are held packed, others as they are; an update may cross
     // from one form to the other either way.

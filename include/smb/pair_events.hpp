@@ -41,11 +41,15 @@ class PairEventsState;
 /// the cache and compared partition by partition), plus sorting the events. It holds about 40
 /// bytes per pair (the previous list, hashed, and room for the next).
 ///
+/// Threads: an update uses the threads given at construction, whatever the detection uses.
+///
 /// Errors: update() throws ArgumentError for a pair with a >= b or a pair listed twice, and
 /// swap_remove() for removed > last; nothing changes then. A PairEvents is not synchronised.
 class PairEvents {
 public:
-    PairEvents();
+    /// `threads`: the threads an update may use (OpenMP; 0 for all cores, as
+    /// DetectionSettings::threads); the events do not depend on it.
+    explicit PairEvents(unsigned threads = 1);
     ~PairEvents();
     PairEvents(PairEvents&&) noexcept;
     PairEvents& operator=(PairEvents&&) noexcept;
@@ -81,6 +85,8 @@ public:
     /// Forgets the previous list, the events and the calls made since: the next update reports
     /// every pair as begun. Releases the memory held.
     void clear();
+    /// The threads an update may use, as constructed (1 for a moved-from PairEvents).
+    [[nodiscard]] unsigned threads() const noexcept;
     /// Heap bytes held now.
     [[nodiscard]] std::size_t bytes_held() const noexcept;
 

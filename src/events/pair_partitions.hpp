@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/growth.hpp"
@@ -91,9 +92,11 @@ struct PairPartitions {
                offsets.capacity() * sizeof(std::uint32_t);
     }
 
-    /// Lays out `source` by partition. Checks a < b of every pair first and throws
-    /// ArgumentError otherwise, with this object unchanged.
-    void assign(std::span<const Pair> source) {
+    /// Lays out `source` by partition, on `threads` threads (each counts and scatters its own
+    /// contiguous share; the layout depends on the thread count, the events do not). Checks
+    /// a < b of every pair first and throws ArgumentError for the first that fails otherwise,
+    /// with this object unchanged.
+    void assign(std::span<const Pair> source, int threads) {
         if (source.size() >= UINT32_MAX)
             throw ArgumentError("PairEvents::update: at most " + std::to_string(UINT32_MAX - 1) + " pairs");
         const int new_bits = partition_bits_for(source.size());
@@ -102,37 +105,77 @@ struct PairPartitions {
             return static_cast<std::size_t>((pair_hash(pair) >> (63 - new_bits)) >> 1);
         };
         const std::size_t parts = std::size_t{1} << new_bits;
-        std::vector<std::uint32_t> counts(parts + 1, 0);
-        BoxId names = 0;
-        for (std::size_t i = 0; i < source.size(); ++i) {
-            const Pair& pair = source[i];
-            if (pair.a >= pair.b) {
-                throw ArgumentError("PairEvents::update: pair " + std::to_string(i) + " is (" + std::to_string(pair.a) +
-                                    ", " + std::to_string(pair.b) + "); every pair must have a < b");
+        const std::size_t n = source.size();
+        constexpr std::size_t kPairsPerThread = std::size_t{1} << 16;
+        const int team = std::max(1, std::min(threads, static_cast<int>(n / kPairsPerThread)));
+        const auto share = [&](int t) {
+            return std::pair{n * static_cast<std::size_t>(t) / static_cast<std::size_t>(team),
+                             n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(team)};
+        };
+        // Counts of thread t at [t * parts, (t + 1) * parts), then its cursors.
+        std::vector<std::uint32_t> counts(static_cast<std::size_t>(team) * parts, 0);
+        std::vector<BoxId> names(static_cast<std::size_t>(team), 0);
+        std::vector<std::size_t> first_bad(static_cast<std::size_t>(team), SIZE_MAX);
+#pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
+        for (int t = 0; t < team; ++t) {
+            const auto [lo, hi] = share(t);
+            std::uint32_t* count = counts.data() + static_cast<std::size_t>(t) * parts;
+            BoxId seen = 0;
+            for (std::size_t i = lo; i < hi; ++i) {
+                const Pair& pair = source[i];
+                if (pair.a >= pair.b) {
+                    first_bad[static_cast<std::size_t>(t)] = i;
+                    break;
+                }
+                seen |= pair.b;
+                ++count[partition_of(pair)];
             }
-            names |= pair.b;
-            ++counts[partition_of(pair) + 1];
+            names[static_cast<std::size_t>(t)] = seen;
         }
-        for (std::size_t p = 0; p < parts; ++p) counts[p + 1] += counts[p];
-        const bool pack = names <= 0xFFFFFFFFU;
+        for (const std::size_t i : first_bad) {
+            if (i != SIZE_MAX) {
+                throw ArgumentError("PairEvents::update: pair " + std::to_string(i) + " is (" +
+                                    std::to_string(source[i].a) + ", " + std::to_string(source[i].b) +
+                                    "); every pair must have a < b");
+            }
+        }
+        BoxId all_names = 0;
+        for (const BoxId seen : names) all_names |= seen;
+        // Partition after partition, each thread's pairs after the previous thread's.
+        std::vector<std::uint32_t> starts(parts + 1, 0);
+        std::uint32_t running = 0;
+        for (std::size_t p = 0; p < parts; ++p) {
+            starts[p] = running;
+            for (std::size_t t = 0; t < static_cast<std::size_t>(team); ++t)
+                running += std::exchange(counts[t * parts + p], running);
+        }
+        starts[parts] = running;
+        const bool pack = all_names <= 0xFFFFFFFFU;
         if (pack) {
-            resize_with_slack(packed, source.size());
+            resize_with_slack(packed, n);
         } else {
-            resize_with_slack(wide, source.size());
+            resize_with_slack(wide, n);
         }
-        std::vector<std::uint32_t> cursors(counts.begin(), counts.end() - 1);
-        offsets.swap(counts);
+        offsets.swap(starts);
         bits = new_bits;
         is_packed = pack;
         if (pack) {
             wide.clear();
-            for (const Pair& pair : source) {
-                const PackedPair word = pack_pair(pair.a, pair.b);  // its own hash
-                packed[cursors[(word >> (63 - new_bits)) >> 1]++] = word;
-            }
         } else {
             packed.clear();
-            for (const Pair& pair : source) wide[cursors[partition_of(pair)]++] = pair;
+        }
+#pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
+        for (int t = 0; t < team; ++t) {
+            const auto [lo, hi] = share(t);
+            std::uint32_t* cursor = counts.data() + static_cast<std::size_t>(t) * parts;
+            if (pack) {
+                for (std::size_t i = lo; i < hi; ++i) {
+                    const PackedPair word = pack_pair(source[i].a, source[i].b);  // its own hash
+                    packed[cursor[(word >> (63 - new_bits)) >> 1]++] = word;
+                }
+            } else {
+                for (std::size_t i = lo; i < hi; ++i) wide[cursor[partition_of(source[i])]++] = source[i];
+            }
         }
     }
 };
