@@ -38,8 +38,8 @@ class PairEventsState;
 /// indices of the array at the time of the call. Bodies appended to the array need no call.
 ///
 /// Cost: linear in the pairs of the two lists (they are hashed into partitions small enough for
-/// the cache and compared partition by partition), plus sorting the events. It holds about 40
-/// bytes per pair (the previous list, hashed, and room for the next).
+/// the cache and compared partition by partition), plus sorting the events (docs/events.md). It
+/// holds about 60 bytes per pair: the previous list, hashed, room for the next, and the events.
 ///
 /// Threads: an update uses the threads given at construction, whatever the detection uses.
 ///
