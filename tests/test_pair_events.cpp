@@ -12,6 +12,7 @@
 #include <set>
 #include <vector>
 
+#include "reference/world_types.hpp"
 #include "smb/pair_events.hpp"
 
 namespace smb::test {
@@ -63,7 +64,9 @@ TEST(PairEvents, RandomListsMatchSetDifference) {
     PairEvents events;
     std::vector<Pair> previous;
     // Sizes up and down across several partition layouts, each list a mix of kept and new pairs.
-    for (const std::size_t count : {0, 5, 3000, 2900, 40000, 9000, 70000, 1, 0, 20000}) {
+    for (const std::size_t count :
+         {std::size_t{0}, std::size_t{5}, std::size_t{3000}, std::size_t{2900}, scaled(40000), std::size_t{9000},
+          scaled(70000), std::size_t{1}, std::size_t{0}, std::size_t{20000}}) {
         std::vector<Pair> next = random_pairs(random, count, 1 + count / 2 + 10);
         // Keep a random part of the previous list, as temporal coherence would.
         for (std::size_t i = 0; i < previous.size() && i < count / 2; i += 2) next[i] = previous[i];
