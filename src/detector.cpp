@@ -52,6 +52,19 @@ DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const P
 }
 
 template <std::floating_point Real, int Dim>
+DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, std::vector<Pair>& pairs, PairEvents& events) {
+    auto& state = this->state();
+    // The events are updated inside the collection, so that a throw there restores the pairs.
+    return detail::collect_pairs(pairs, state.settings().max_pairs_held, "DetectorSettings::max_pairs_held",
+                                 "detect(boxes, sink)", [&](const PairSink& sink) {
+                                     const std::size_t kept = pairs.size();
+                                     const DetectStats stats = state.detect(boxes, sink);
+                                     events.update(std::span<const Pair>(pairs).subspan(kept));
+                                     return stats;
+                                 });
+}
+
+template <std::floating_point Real, int Dim>
 void Detector<Real, Dim>::clear() {
     if (state_) state_->clear();
 }

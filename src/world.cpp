@@ -174,6 +174,21 @@ DetectStats World<Real, Dim>::detect(const PairSink& sink) {
 }
 
 template <std::floating_point Real, int Dim>
+DetectStats World<Real, Dim>::detect(std::vector<Pair>& pairs, PairEvents& events) {
+    auto& state = this->state();
+    // The events are updated inside the collection, so that a throw there restores the pairs.
+    return detail::collect_pairs(pairs, state.settings().max_pairs_held, "WorldSettings::max_pairs_held",
+                                 "detect(sink)", [&](const PairSink& sink) {
+                                     const std::size_t kept = pairs.size();
+                                     const DetectStats stats = state.detect(sink);
+                                     if (state.cleared_before_detect()) events.replace_all();
+                                     events.update(std::span<const Pair>(pairs).subspan(kept),
+                                                   state.reinserted_before_detect());
+                                     return stats;
+                                 });
+}
+
+template <std::floating_point Real, int Dim>
 const DetectStats& World<Real, Dim>::last_stats() const noexcept {
     return state_ ? state_->last_stats() : kNoStats;
 }

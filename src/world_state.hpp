@@ -55,6 +55,7 @@ public:
         paper_ = PaperPipeline<Real, Dim>(&store_, &settings_);
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
+        cleared_ = true;
     }
 
     DetectStats detect(const PairSink& sink) {
@@ -91,13 +92,28 @@ public:
         stats.bytes_held = bytes_held();
         stats.total_seconds = whole.seconds();
         stats_ = stats;
+        // For pair events: what was removed between the detection before and this one.
+        store_.take_removed_log(removed_before_detect_);
+        cleared_before_detect_ = std::exchange(cleared_, false);
         return stats;
     }
+
+    /// Ids removed between the detection before and the last one, and inserted again: new boxes
+    /// under old ids, for PairEvents. Empty (and no allocation) in the common case.
+    [[nodiscard]] std::vector<BoxId> reinserted_before_detect() const {
+        std::vector<BoxId> ids;
+        for (const BoxId id : removed_before_detect_) {
+            if (store_.contains(id)) ids.push_back(id);
+        }
+        return ids;
+    }
+    /// Whether clear() was called between the detection before and the last one.
+    [[nodiscard]] bool cleared_before_detect() const noexcept { return cleared_before_detect_; }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         // World allocates this state itself, so its own size counts too.
         return sizeof(*this) + store_.bytes_held() + persistent_.bytes_held() + paper_.bytes_held() +
-               chunk_.capacity() * sizeof(Pair);
+               chunk_.capacity() * sizeof(Pair) + removed_before_detect_.capacity() * sizeof(BoxId);
     }
 
 private:
@@ -107,6 +123,9 @@ private:
     HeldCutPipeline<Real, Dim> persistent_;
     PaperPipeline<Real, Dim> paper_{&store_, &settings_};
     std::vector<Pair> chunk_;
+    std::vector<BoxId> removed_before_detect_;
+    bool cleared_ = false;
+    bool cleared_before_detect_ = false;
 };
 
 }  // namespace smb::detail

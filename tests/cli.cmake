@@ -19,7 +19,7 @@ endif()
 # End to end: the built binary on small scenes in tests/data/cli.
 if(TARGET smb_cli)
   find_package(nlohmann_json REQUIRED)
-  foreach(name test_cli_pairs test_cli_generate_run test_cli_output_targets test_cli_arguments
+  foreach(name test_cli_pairs test_cli_events test_cli_generate_run test_cli_output_targets test_cli_arguments
                test_cli_messages)
     smb_add_gtest(NAME ${name}
       SOURCES ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp

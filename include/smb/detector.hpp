@@ -12,6 +12,7 @@
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
+#include "smb/pair_events.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -81,6 +82,12 @@ public:
     /// Reports every overlapping pair to `sink`, in chunks of settings().pair_chunk_size. An
     /// exception thrown by the sink ends the detection and propagates; the detector stays valid.
     DetectStats detect(std::span<const box_type> boxes, const PairSink& sink);
+    /// detect(boxes, pairs), then `events` updated with the pairs (PairEvents::update): the
+    /// pairs of indices that began and ended since the detection before. Between two
+    /// detections, tell `events` of every swap-remove (PairEvents::swap_remove) and of every
+    /// new body put at an old index (PairEvents::replace); appended bodies need nothing.
+    /// Whatever it throws, `pairs` and `events` are as they were.
+    DetectStats detect(std::span<const box_type> boxes, std::vector<Pair>& pairs, PairEvents& events);
 
     /// Forgets the cuts and the order, and releases the memory held; keeps the settings.
     void clear();

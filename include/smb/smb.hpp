@@ -8,6 +8,7 @@
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
+#include "smb/pair_events.hpp"
 #include "smb/query.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"

@@ -15,6 +15,7 @@
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
+#include "smb/pair_events.hpp"
 #include "smb/query.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
@@ -116,6 +117,12 @@ public:
     /// exception thrown by the sink ends the detection and propagates; the world stays valid and
     /// the next detect() reports everything again.
     DetectStats detect(const PairSink& sink);
+    /// detect(pairs), then `events` updated with the pairs (PairEvents::update): the pairs that
+    /// began and ended since the detection before. An id removed and inserted again in between
+    /// is a new box: its old pairs end and its pairs begin; clear() ends every pair. Hand the
+    /// same events to every detection: the removals are forgotten by any detection. Whatever
+    /// it throws, `pairs` and `events` are as they were.
+    DetectStats detect(std::vector<Pair>& pairs, PairEvents& events);
 
     /// Statistics of the last detect() call.
     [[nodiscard]] const DetectStats& last_stats() const noexcept;

@@ -75,6 +75,7 @@ public:
             }
             alive_[slots[i]] = kNamed;
         }
+        reserve_removed_log(ids.size());
         for (std::size_t i = 0; i < ids.size(); ++i) kill(ids[i], slots[i]);
     }
 
@@ -100,6 +101,7 @@ public:
         std::size_t fresh = 0;
         for (BoxId i = 0; i < n; ++i) fresh += contains(i) ? 0 : 1;
         reserve_for(fresh);
+        reserve_removed_log(doomed.size());
         for (const auto& [id, slot] : doomed) kill(id, slot);
         for (BoxId i = 0; i < n; ++i) {
             const Slot slot = slot_of_id_.find(i);
@@ -117,6 +119,14 @@ public:
         alive_.clear();
         slot_of_id_.clear();
         removed_ = 0;
+        removed_log_.clear();
+    }
+
+    /// Hands over the ids removed since the last call (for pair events: an id removed and
+    /// inserted again is a new box) and starts a new log, keeping the capacity.
+    void take_removed_log(std::vector<BoxId>& ids) {
+        ids.swap(removed_log_);
+        removed_log_.clear();
     }
 
     /// Drops the removed slots and returns how every old slot was renumbered; the SMB lists are
@@ -163,7 +173,7 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return boxes_.capacity() * sizeof(box_type) + ids_.capacity() * sizeof(BoxId) + alive_.capacity() +
-               slot_of_id_.bytes_held();
+               slot_of_id_.bytes_held() + removed_log_.capacity() * sizeof(BoxId);
     }
 
 private:
@@ -205,7 +215,13 @@ private:
         alive_[to] = 1;
         slot_of_id_.move(ids_[to], to);
     }
+    /// Before any change, so that logging cannot fail half-way through a removal.
+    void reserve_removed_log(std::size_t extra) {
+        const std::size_t size = removed_log_.size() + extra;
+        if (size > removed_log_.capacity()) removed_log_.reserve(std::max(size, 2 * removed_log_.capacity()));
+    }
     void kill(BoxId id, Slot slot) {
+        removed_log_.push_back(id);
         alive_[slot] = 0;
         slot_of_id_.erase(id);
         ++removed_;
@@ -216,6 +232,7 @@ private:
     std::vector<std::uint8_t> alive_;
     IdIndex slot_of_id_;
     std::size_t removed_ = 0;
+    std::vector<BoxId> removed_log_;
 };
 
 }  // namespace smb::detail

@@ -7,7 +7,8 @@
 
 namespace smb::cli {
 
-/// `smb pairs`: the overlapping pairs of every frame of a scene CSV, as a pair CSV.
+/// `smb pairs`: the overlapping pairs of every frame of a scene CSV, as a pair CSV, or with
+/// --events the pairs that begin and end overlapping, as an event CSV.
 class PairsCommand {
 public:
     explicit PairsCommand(CLI::App& parent);
@@ -21,6 +22,7 @@ private:
     std::string input_ = "-";
     std::string output_ = "-";
     std::size_t pairs_in_memory_ = std::size_t{1} << 24;  ///< 256 MiB of pairs
+    bool events_ = false;                                 ///< the event CSV instead of the pair CSV
 };
 
 }  // namespace smb::cli

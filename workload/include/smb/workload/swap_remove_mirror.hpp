@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "smb/box.hpp"
@@ -30,11 +31,13 @@ public:
                 std::span<const box_type> boxes) {
         // Before this step, environment index i held the body now at index index_of_[i] here,
         // and env_ids_ held the environment's ids in its (increasing) order.
+        swaps_.clear();
         for (const BoxId removed : removed_ids) {
             const auto at = std::lower_bound(env_ids_.begin(), env_ids_.end(), removed);
             const auto env_index = static_cast<std::size_t>(at - env_ids_.begin());
             const std::uint32_t slot = index_of_[env_index];
             const auto last = static_cast<std::uint32_t>(ids_.size() - 1);
+            swaps_.push_back({slot, last});
             // The last body takes the freed index.
             index_of_[env_of_index_[last]] = slot;
             env_of_index_[slot] = env_of_index_[last];
@@ -64,6 +67,11 @@ public:
 
     [[nodiscard]] std::span<const box_type> boxes() const noexcept { return boxes_; }
     [[nodiscard]] BoxId id_at(std::size_t index) const noexcept { return ids_[index]; }
+    /// The id of the body at every index.
+    [[nodiscard]] std::span<const BoxId> ids() const noexcept { return ids_; }
+    /// The swap-removes of the last follow(), in order: (removed index, last index), as
+    /// smb::PairEvents::swap_remove takes them.
+    [[nodiscard]] std::span<const std::pair<std::uint32_t, std::uint32_t>> swaps() const noexcept { return swaps_; }
 
 private:
     static constexpr std::uint32_t kGone = 0xFFFFFFFFU;
@@ -72,6 +80,7 @@ private:
     std::vector<std::uint32_t> env_of_index_;  // per index: the environment's index of its body
     std::vector<std::uint32_t> index_of_;      // per environment index: the body's index here
     std::vector<BoxId> env_ids_;               // the environment's ids, in its order
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> swaps_;
 };
 
 }  // namespace smb::workload

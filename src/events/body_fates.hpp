@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// What became of the bodies of the previous pair list, from the replace() and swap_remove()
+// calls made since: each previous body is gone, or under a new name, or (the default, which
+// holds no memory) where it was. The calls are recorded as they come (a push, so a call that
+// throws changes nothing) and replayed here when the next update needs them.
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "smb/pair.hpp"
+
+namespace smb::detail {
+
+/// One recorded call: replace(first) when `swap` is false, swap_remove(first, second) else.
+struct BodyCall {
+    BoxId first = 0;
+    BoxId second = 0;
+    bool swap = false;
+};
+
+class BodyFates {
+public:
+    /// What a previous pair became.
+    enum class Outcome : std::uint8_t { same, renamed, ended };
+
+    /// Replays `calls`, then `replaced` as replace() calls.
+    BodyFates(std::span<const BodyCall> calls, std::span<const BoxId> replaced) {
+        for (const BodyCall& call : calls) {
+            if (call.swap)
+                swap_remove(call.first, call.second);
+            else
+                replace(call.first);
+        }
+        for (const BoxId name : replaced) replace(name);
+        build_filter();
+    }
+
+    [[nodiscard]] bool empty() const noexcept { return fate_.empty(); }
+
+    /// Whether `pair` may involve a body with a fate: a filter of one bit per name, so that the
+    /// pairs of bodies left alone (nearly all) cost a load or two each.
+    [[nodiscard]] bool may_touch(const Pair& pair) const noexcept { return marked(pair.a) || marked(pair.b); }
+
+    /// What became of the previous pair `pair`; `renamed` gives its new name in `now`.
+    [[nodiscard]] Outcome follow(const Pair& pair, Pair& now) const {
+        const auto a = fate_of(pair.a);
+        const auto b = fate_of(pair.b);
+        if (!a || !b) return Outcome::ended;
+        if (*a == pair.a && *b == pair.b) return Outcome::same;
+        now = *a < *b ? Pair{*a, *b} : Pair{*b, *a};
+        return Outcome::renamed;
+    }
+
+private:
+    static constexpr int kFilterBits = 16;
+
+    void replace(BoxId name) {
+        if (const auto body = previous_body_at(name)) set_fate(*body, std::nullopt);
+        holder_[name] = std::nullopt;
+    }
+    void swap_remove(BoxId removed, BoxId last) {
+        const auto gone = previous_body_at(removed);
+        const auto moved = previous_body_at(last);
+        if (gone) set_fate(*gone, std::nullopt);
+        if (removed != last && moved) set_fate(*moved, removed);
+        holder_[removed] = removed != last ? moved : std::nullopt;
+        if (removed != last) holder_[last] = std::nullopt;
+    }
+
+    /// The previous body now at `name`: the one moved there, none, or the one named so before.
+    [[nodiscard]] std::optional<BoxId> previous_body_at(BoxId name) const {
+        const auto it = holder_.find(name);
+        return it != holder_.end() ? it->second : std::optional<BoxId>(name);
+    }
+    /// The name now of previous body `body`, none if it is gone.
+    [[nodiscard]] std::optional<BoxId> fate_of(BoxId body) const {
+        const auto it = fate_.find(body);
+        return it != fate_.end() ? it->second : std::optional<BoxId>(body);
+    }
+    void set_fate(BoxId body, std::optional<BoxId> now) { fate_[body] = now; }
+
+    /// Exact, one bit per name up to the largest name with a fate, where that is at most 2^27
+    /// (16 MiB; indices and dense ids); else one bit per hashed name. A hashed filter lets
+    /// through a share of all pairs as large as its share of bits set, each costing two map
+    /// lookups: with the swap-removes of one step at 1M boxes (some 2 000 bodies in 2^16 bits),
+    /// that was a quarter of the events' time.
+    void build_filter() {
+        BoxId largest = 0;
+        for (const auto& entry : fate_) largest = std::max(largest, entry.first);
+        exact_ = largest < (BoxId{1} << 27);
+        filter_.assign(exact_ ? static_cast<std::size_t>(largest / 64 + 1) : (std::size_t{1} << kFilterBits) / 64, 0);
+        for (const auto& entry : fate_) {
+            const std::size_t bit = filter_bit(entry.first);
+            filter_[bit / 64] |= std::uint64_t{1} << (bit % 64);
+        }
+    }
+    [[nodiscard]] bool marked(BoxId name) const noexcept {
+        if (exact_ && name >= filter_.size() * 64) return false;
+        const std::size_t bit = filter_bit(name);
+        return (filter_[bit / 64] >> (bit % 64) & 1) != 0;
+    }
+    [[nodiscard]] std::size_t filter_bit(BoxId name) const noexcept {
+        if (exact_) return static_cast<std::size_t>(name);
+        return static_cast<std::size_t>((name * 0x9E3779B97F4A7C15ULL) >> (64 - kFilterBits));
+    }
+
+    std::unordered_map<BoxId, std::optional<BoxId>> fate_;
+    std::unordered_map<BoxId, std::optional<BoxId>> holder_;
+    std::vector<std::uint64_t> filter_;
+    bool exact_ = true;
+};
+
+}  // namespace smb::detail

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// One partition of the previous pair list against the same partition of the current one: the
+// previous pairs go into a small open-addressing table, the current ones probe it. A current
+// pair not found is a candidate to begin (it may be a renamed previous pair, which lives
+// elsewhere: pair_events.cpp settles those); a previous pair not found has ended.
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "events/body_fates.hpp"
+#include "events/pair_partitions.hpp"
+#include "smb/errors.hpp"
+#include "smb/pair.hpp"
+
+namespace smb::detail {
+
+/// A previous pair under a new name: `now` is to be looked for among the candidates, `before`
+/// is reported if it ended.
+struct RenamedPair {
+    Pair now;
+    Pair before;
+};
+
+/// What the partitions found, and the tables they reuse.
+struct DiffScratch {
+    std::vector<std::uint32_t> table;
+    std::vector<std::uint8_t> matched;
+    std::vector<Pair> candidates;
+    std::vector<Pair> ended;
+    std::vector<RenamedPair> renamed;
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        return table.capacity() * sizeof(std::uint32_t) + matched.capacity() +
+               (candidates.capacity() + ended.capacity()) * sizeof(Pair) + renamed.capacity() * sizeof(RenamedPair);
+    }
+};
+
+[[noreturn]] inline void throw_repeated_pair(const Pair& pair) {
+    throw ArgumentError("PairEvents::update: pair (" + std::to_string(pair.a) + ", " + std::to_string(pair.b) +
+                        ") is listed twice");
+}
+
+/// Compares `previous` with `current`, both the pairs of one partition of `unit_bits` hash
+/// bits, each in either form (pair_partitions.hpp). `fates` is null when no body changed name
+/// since the previous list.
+template <class PreviousPair, class CurrentPair>
+void diff_partition(std::span<const PreviousPair> previous, std::span<const CurrentPair> current, int unit_bits,
+                    const BodyFates* fates, DiffScratch& scratch) {
+    if (previous.empty()) {
+        for (const CurrentPair& pair : current) scratch.candidates.push_back(unpacked(pair));
+        return;
+    }
+    // Eight slots a pair: most probes end at their first slot. Measured at 1M boxes (3D, update
+    // factor 1e-3), the diff took 24 ms with two slots a pair, 15 with four and 13 with eight.
+    int table_bits = 3;
+    while ((std::size_t{1} << table_bits) < 8 * previous.size()) ++table_bits;
+    const std::size_t mask = (std::size_t{1} << table_bits) - 1;
+    // The partition took the top unit_bits bits of the hash; the table takes the next ones.
+    const auto slot_of = [&](const auto& pair) {
+        return static_cast<std::size_t>((pair_hash(pair) << unit_bits) >> (64 - table_bits));
+    };
+    auto& table = scratch.table;
+    auto& matched = scratch.matched;
+    table.assign(mask + 1, 0);
+    matched.assign(previous.size(), 0);
+
+    for (std::size_t i = 0; i < previous.size(); ++i) {
+        if (fates != nullptr) {
+            const Pair pair = unpacked(previous[i]);
+            if (fates->may_touch(pair)) {
+                Pair now;
+                const auto outcome = fates->follow(pair, now);
+                if (outcome == BodyFates::Outcome::ended) {
+                    scratch.ended.push_back(pair);
+                    matched[i] = 1;
+                    continue;
+                }
+                if (outcome == BodyFates::Outcome::renamed) {
+                    scratch.renamed.push_back({now, pair});
+                    matched[i] = 1;
+                    continue;
+                }
+            }
+        }
+        std::size_t slot = slot_of(previous[i]);
+        while (table[slot] != 0) slot = (slot + 1) & mask;
+        table[slot] = static_cast<std::uint32_t>(i + 1);
+    }
+
+    for (const CurrentPair& pair : current) {
+        std::size_t slot = slot_of(pair);
+        for (;;) {
+            const std::uint32_t entry = table[slot];
+            if (entry == 0) {
+                scratch.candidates.push_back(unpacked(pair));
+                break;
+            }
+            if (same_pair(previous[entry - 1], pair)) {
+                if (matched[entry - 1] != 0) throw_repeated_pair(unpacked(pair));
+                matched[entry - 1] = 1;
+                break;
+            }
+            slot = (slot + 1) & mask;
+        }
+    }
+
+    for (std::size_t i = 0; i < previous.size(); ++i) {
+        if (matched[i] == 0) scratch.ended.push_back(unpacked(previous[i]));
+    }
+}
+
+}  // namespace smb::detail
