@@ -6,6 +6,7 @@
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
+#include "smb/join.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
