@@ -68,7 +68,8 @@ protected:
                               double max_side) {
         Random random(seed);
         Boxes boxes;
-        for (std::size_t i = 0; i < count; ++i) boxes.push_back(random_box<Real, Dim>(random, lo, hi, min_side, max_side));
+        for (std::size_t i = 0; i < count; ++i)
+            boxes.push_back(random_box<Real, Dim>(random, lo, hi, min_side, max_side));
         return boxes;
     }
 
@@ -173,8 +174,9 @@ TYPED_TEST(TwoSetsTest, ParticlesAgainstFloorAndWalls) {
                 for (int j = 0; j < TestFixture::Dim; ++j) {
                     const bool along = j == (k + 1) % TestFixture::Dim;
                     box.min[j] = static_cast<typename TestFixture::Real>(j == k ? side - 0.1 : along ? 2 * panel : 0);
-                    box.max[j] =
-                        static_cast<typename TestFixture::Real>(j == k ? side + 0.1 : along ? 2 * panel + 2 : 20);
+                    box.max[j] = static_cast<typename TestFixture::Real>(j == k  ? side + 0.1
+                                                                         : along ? 2 * panel + 2
+                                                                                 : 20);
                 }
                 walls.push_back(box);
             }

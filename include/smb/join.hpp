@@ -42,7 +42,7 @@ template <std::floating_point Real, int Dim>
 
 /// The two-set find_overlapping_pairs over any two BoxRange of the same box type.
 template <BoxRange First, BoxRange Second>
-    requires std::same_as<std::ranges::range_value_t<const First>, std::ranges::range_value_t<const Second>>
+requires std::same_as<std::ranges::range_value_t<const First>, std::ranges::range_value_t<const Second>>
 [[nodiscard]] std::vector<Pair> find_overlapping_pairs(const First& first, const Second& second,
                                                        const WorldSettings& settings = {}) {
     using box_type = std::ranges::range_value_t<const First>;

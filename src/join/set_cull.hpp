@@ -96,8 +96,7 @@ private:
         kept.reserve(boxes.size());
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             bool inside = true;
-            for (int k = 0; k < Dim; ++k)
-                inside = inside && boxes[i].min[k] <= hi_[k] && lo_[k] <= boxes[i].max[k];
+            for (int k = 0; k < Dim; ++k) inside = inside && boxes[i].min[k] <= hi_[k] && lo_[k] <= boxes[i].max[k];
             if (inside) kept.push_back(i);
         }
         return kept;
@@ -185,8 +184,7 @@ private:
         for (const std::size_t i : kept) {
             const Cells cells = cells_of(boxes[i]);
             spent += covered(cells);
-            if (spent > budget ||
-                any_cell(cells, [this](std::size_t cell) { return marks_[cell] != 0; }))
+            if (spent > budget || any_cell(cells, [this](std::size_t cell) { return marks_[cell] != 0; }))
                 touching.push_back(i);
         }
         return touching;

@@ -24,8 +24,8 @@ template <std::floating_point Real, int Dim>
 void check_boxes(std::span<const Box<Real, Dim>> boxes, const char* which) {
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         if (!is_valid(boxes[i]))
-            throw InvalidBoxError(std::string("find_overlapping_pairs: in the ") + which +
-                                  " set, " + detail::describe_invalid_box(i, boxes[i]));
+            throw InvalidBoxError(std::string("find_overlapping_pairs: in the ") + which + " set, " +
+                                  detail::describe_invalid_box(i, boxes[i]));
     }
 }
 
@@ -83,8 +83,8 @@ std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> first, 
     return pairs;
 }
 
-#define SMB_INSTANTIATE(Real, Dim)                                                                        \
-    template std::vector<Pair> find_overlapping_pairs<Real, Dim>(                                          \
+#define SMB_INSTANTIATE(Real, Dim)                                \
+    template std::vector<Pair> find_overlapping_pairs<Real, Dim>( \
         std::span<const Box<Real, Dim>>, std::span<const Box<Real, Dim>>, const WorldSettings&);
 
 SMB_INSTANTIATE(float, 2)
