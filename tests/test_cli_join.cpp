@@ -54,12 +54,12 @@ TEST(CliJoin, FramesOnOneSideSkippedFramesAndSharedIds) {
                                         "3,1,4,4,5,5\n"
                                         "6,1,0,0,1,1\n");
     write_file(folder / "right.csv", std::string(header_2d) +
-                                         "0,1,1,1,2,2\n"       // touches left 1 at a corner
+                                         "0,1,1,1,2,2\n"  // touches left 1 at a corner
                                          "0,3,0.5,0.5,0.7,0.7\n"
-                                         "2,1,0,0,1,1\n"       // no left box in frame 2
-                                         "3,1,2,2,3,3\n"       // touches left 9
-                                         "3,2,4.5,4.5,9,9\n"   // overlaps left 1 only
-                                         "3,7,0,0,10,10\n"     // covers both
+                                         "2,1,0,0,1,1\n"      // no left box in frame 2
+                                         "3,1,2,2,3,3\n"      // touches left 9
+                                         "3,2,4.5,4.5,9,9\n"  // overlaps left 1 only
+                                         "3,7,0,0,10,10\n"    // covers both
                                          "4,7,0,0,10,10\n");  // no left frame 4
     const auto result = run_smb(folder, {"join", "--left", "left.csv", "--right", "right.csv", "--output", "out.csv"});
     ASSERT_EQ(result.status, 0) << result.err;
@@ -97,7 +97,7 @@ TEST(CliJoin, OneSideFromStandardInput) {
 /// move and go, ids drawn from a small pool so that both scenes use the same ids.
 template <int Dim>
 std::vector<std::vector<std::pair<BoxId, Box<double, Dim>>>> random_scene(std::mt19937_64& random, int frames,
-                                                                           double presence) {
+                                                                          double presence) {
     std::uniform_real_distribution<double> coordinate(0, 12);
     std::uniform_real_distribution<double> side(0.2, 2.0);
     std::bernoulli_distribution keep(0.8);
