@@ -9,7 +9,8 @@
 // Scenes: `paper`, two independent placements of the paper's workload (E 0.4, H 2.5, the same
 // cube) of N and M boxes; `mesh`, N particles of the paper's workload against the boxes of a
 // triangulated height field through the middle of the cube, about M triangles (a mesh: fewer,
-// larger, thin boxes). Times are the median of R rounds, the methods alternated.
+// larger, thin boxes). Times are the median of R rounds, the methods alternated: wall time,
+// and in parentheses the process's CPU time (std::clock), which shows what other processes took.
 
 #include <algorithm>
 #include <array>
@@ -18,6 +19,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <map>
 #include <span>
@@ -201,30 +203,36 @@ int compare(const std::string& scene, std::size_t count_first, std::size_t count
     std::map<std::string, std::vector<double>> times;
     std::map<std::string, Outcome> last;
     std::vector<double> cgal_sort;
+    std::map<std::string, std::vector<double>> cpu;
+    // The processor time beside the wall time shows how much other processes took.
+    auto timed = [&](const std::string& name, const std::function<Outcome()>& method) {
+        const std::clock_t start = std::clock();
+        const Outcome outcome = method();
+        cpu[name].push_back(static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+        times[name].push_back(outcome.seconds);
+        last[name] = outcome;
+    };
     for (int round = 0; round < rounds; ++round) {
-        const Outcome smb = run_smb(first, second);
-        times["smb"].push_back(smb.seconds);
-        last["smb"] = smb;
-        const Outcome plain = run_smb_union(first, second);
-        times["smb union"].push_back(plain.seconds);
-        last["smb union"] = plain;
+        timed("smb", [&] { return run_smb(first, second); });
+        timed("smb union", [&] { return run_smb_union(first, second); });
 #if defined(SMB_BENCH_HAVE_CGAL)
-        double sort_seconds = 0;
-        const Outcome cgal = run_cgal(first, second, sort_seconds);
-        times["cgal"].push_back(cgal.seconds);
-        cgal_sort.push_back(sort_seconds);
-        last["cgal"] = cgal;
+        timed("cgal", [&] {
+            double sort_seconds = 0;
+            const Outcome cgal = run_cgal(first, second, sort_seconds);
+            cgal_sort.push_back(sort_seconds);
+            return cgal;
+        });
 #endif
     }
     bool agree = true;
     for (const auto& [name, outcome] : last)
         agree = agree && outcome.pairs == last["smb"].pairs && outcome.digest == last["smb"].digest;
 
-    std::printf("| %dD %s | %zu | %zu | %zu | %016llx | %.3f | %.3f |", Dim, scene.c_str(), first.size(), second.size(),
-                last["smb"].pairs, static_cast<unsigned long long>(last["smb"].digest), median(times["smb"]),
-                median(times["smb union"]));
+    std::printf("| %dD %s | %zu | %zu | %zu | %016llx | %.3f (%.3f) | %.3f (%.3f) |", Dim, scene.c_str(), first.size(),
+                second.size(), last["smb"].pairs, static_cast<unsigned long long>(last["smb"].digest),
+                median(times["smb"]), median(cpu["smb"]), median(times["smb union"]), median(cpu["smb union"]));
     if (times.contains("cgal")) {
-        std::printf(" %.3f (+%.3f sort) | %.2fx |", median(times["cgal"]), median(cgal_sort),
+        std::printf(" %.3f (%.3f) +%.3f sort | %.2fx |", median(times["cgal"]), median(cpu["cgal"]), median(cgal_sort),
                     median(times["cgal"]) / median(times["smb"]));
     } else {
         std::printf(" - | - |");
@@ -240,8 +248,8 @@ int main_with_arguments(int argc, char** argv) {
         const std::string flag = argv[i];
         if (flag == "--header") {
             std::printf(
-                "| scene | first | second | pairs | digest | smb (s) | smb union (s) | CGAL (s) | "
-                "CGAL ÷ smb | same pairs |\n|---|---|---|---|---|---|---|---|---|---|\n");
+                "| scene | first | second | pairs | digest | smb, s (CPU) | smb union, s (CPU) | "
+                "CGAL, s (CPU) | CGAL ÷ smb | same pairs |\n|---|---|---|---|---|---|---|---|---|---|\n");
             continue;
         }
         if (!flag.starts_with("--") || i + 1 >= argc || !values.contains(flag.substr(2)))

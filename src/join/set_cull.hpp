@@ -55,8 +55,12 @@ public:
         // what the region kept) when marking would cost more than a few passes over the boxes.
         const std::size_t budget = 8 * (small.size() + large.size()) + cull.cell_count_;
         if (!cull.mark(small_boxes, small, budget)) return kept;
+        // Sets mixed over the whole region (two layers of the same land) mark nearly every
+        // cell: the grid would leave out little, so its other passes are not worth making.
+        if (cull.marked_ * 10 >= cull.cell_count_ * 9) return kept;
         large = cull.touching_marks(large_boxes, large, budget);
         cull.marks_.assign(cull.cell_count_, 0);
+        cull.marked_ = 0;
         if (!cull.mark(large_boxes, large, budget)) return kept;
         small = cull.touching_marks(small_boxes, small, budget);
         return kept;
@@ -167,6 +171,7 @@ private:
             spent += covered(cells);
             if (spent > budget) return false;
             any_cell(cells, [this](std::size_t cell) {
+                marked_ += marks_[cell] == 0 ? 1 : 0;
                 marks_[cell] = 1;
                 return false;
             });
@@ -202,6 +207,7 @@ private:
     std::array<std::size_t, Dim> axis_cells_{};
     std::size_t cells_per_axis_ = 1;
     std::size_t cell_count_ = 1;
+    std::size_t marked_ = 0;  ///< cells marked so far
     std::vector<std::uint8_t> marks_;
 };
 
