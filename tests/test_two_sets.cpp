@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "join/set_cull.hpp"
 #include "reference/random_boxes.hpp"
 #include "reference/world_types.hpp"
 #include "smb/join.hpp"
@@ -273,6 +274,54 @@ TEST(TwoSets, DoublesFarFromTheOriginAreExact) {
     const auto pairs = find_overlapping_pairs(first, second);
     EXPECT_TRUE(same_list(pairs, brute_force_cross_pairs(first, second)));
     EXPECT_EQ(pairs.size(), 100u);
+}
+
+// What the cull before the detection leaves out: the particles far from a floor or from the
+// walls, nothing where two sets are mixed evenly (src/join/set_cull.hpp).
+TEST(TwoSetsCull, LeavesOutOnlyBoxesThatCannotMeetTheOtherSet) {
+    Random random(790);
+    std::vector<Box3d> particles;
+    for (int i = 0; i < 8000; ++i) particles.push_back(random_box<double, 3>(random, 0.5, 29.5, 0.2, 1.0));
+    std::vector<Box3d> floor;
+    std::vector<Box3d> walls;
+    for (int i = 0; i < 30; ++i) {
+        for (int j = 0; j < 30; ++j) {
+            const double x = i;
+            const double y = j;
+            floor.push_back({{x, y, 0.3}, {x + 1, y + 1, 0.3}});
+            walls.push_back({{-0.1, x, y}, {0.1, x + 1, y + 1}});
+            walls.push_back({{29.9, x, y}, {30.1, x + 1, y + 1}});
+        }
+    }
+    // Every box left out overlaps no box of the other set.
+    auto expect_left_out_meet_nothing = [](const std::vector<Box3d>& boxes, const std::vector<std::size_t>& kept,
+                                           const std::vector<Box3d>& others) {
+        std::size_t next = 0;
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            if (next < kept.size() && kept[next] == i) {
+                ++next;
+                continue;
+            }
+            for (const Box3d& other : others) ASSERT_FALSE(overlaps(boxes[i], other)) << i;
+        }
+    };
+    const auto on_floor = detail::SetCull<double, 3>::keep(particles, floor);
+    EXPECT_LT(on_floor.first.size(), particles.size() / 20);  // the region: a thin slab
+    expect_left_out_meet_nothing(particles, on_floor.first, floor);
+    expect_left_out_meet_nothing(floor, on_floor.second, particles);
+    const auto on_walls = detail::SetCull<double, 3>::keep(particles, walls);
+    EXPECT_LT(on_walls.first.size(), particles.size() / 5);  // the grid: two walls of a cube
+    expect_left_out_meet_nothing(particles, on_walls.first, walls);
+    expect_left_out_meet_nothing(walls, on_walls.second, particles);
+
+    // Two dense sets over the same cube: every box may meet the other set.
+    std::vector<Box3d> dense;
+    std::vector<Box3d> mixed;
+    for (int i = 0; i < 20000; ++i) dense.push_back(random_box<double, 3>(random, 0, 15, 0.2, 1.0));
+    for (int i = 0; i < 5000; ++i) mixed.push_back(random_box<double, 3>(random, 0, 15, 0.2, 1.0));
+    const auto even = detail::SetCull<double, 3>::keep(dense, mixed);
+    EXPECT_EQ(even.first.size(), dense.size());
+    EXPECT_EQ(even.second.size(), mixed.size());
 }
 
 }  // namespace

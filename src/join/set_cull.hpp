@@ -44,6 +44,7 @@ public:
         if (!cull.intersect_bounds(first, second)) return kept;
         kept.first = cull.inside_region(first);
         kept.second = cull.inside_region(second);
+        if (kept.first.empty() || kept.second.empty()) return {};
         const bool first_smaller = kept.first.size() < kept.second.size();
         auto& small = first_smaller ? kept.first : kept.second;
         auto& large = first_smaller ? kept.second : kept.first;
