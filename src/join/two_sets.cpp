@@ -67,6 +67,10 @@ std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> first, 
     for (const std::size_t i : kept.first) both.push_back(first[i]);
     for (const std::size_t j : kept.second) both.push_back(second[j]);
     const std::size_t split = kept.first.size();
+    // Where a set was kept whole (sets mixed evenly), its indices are its own: looking them up
+    // would cost a cache miss per pair on millions of pairs.
+    const bool whole_first = kept.first.size() == first.size();
+    const bool whole_second = kept.second.size() == second.size();
 
     detect_union<Real, Dim>(both, settings, [&](std::span<const Pair> chunk) {
         for (const Pair& pair : chunk) {
@@ -76,7 +80,8 @@ std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> first, 
                 throw PairLimitError("find_overlapping_pairs: more than " + std::to_string(settings.max_pairs_held) +
                                      " pairs between the two sets (WorldSettings::max_pairs_held)");
             }
-            pairs.push_back({kept.first[pair.a], kept.second[pair.b - split]});
+            const std::size_t b = pair.b - split;
+            pairs.push_back({whole_first ? pair.a : kept.first[pair.a], whole_second ? b : kept.second[b]});
         }
     });
     std::sort(pairs.begin(), pairs.end());
