@@ -318,7 +318,7 @@ TEST(TwoSetsCull, LeavesOutOnlyBoxesThatCannotMeetTheOtherSet) {
     std::vector<Box3d> dense;
     std::vector<Box3d> mixed;
     for (int i = 0; i < 20000; ++i) dense.push_back(random_box<double, 3>(random, 0, 15, 0.2, 1.0));
-    for (int i = 0; i < 5000; ++i) mixed.push_back(random_box<double, 3>(random, 0, 15, 0.2, 1.0));
+    for (int i = 0; i < 20000; ++i) mixed.push_back(random_box<double, 3>(random, 0, 15, 0.2, 1.0));
     const auto even = detail::SetCull<double, 3>::keep(dense, mixed);
     EXPECT_EQ(even.first.size(), dense.size());
     EXPECT_EQ(even.second.size(), mixed.size());

@@ -6,9 +6,10 @@
 // Two cheap filters, both conservative (a box that overlaps a box of the other set is never
 // left out), so the pairs stay exact:
 //  1. the region: both sets' bounding boxes intersected; a box outside it meets nothing;
-//  2. a coarse grid over that region: the cells the smaller set touches are marked, the larger
-//     set keeps only its boxes that touch a marked cell, and then the smaller set keeps only
-//     its boxes that touch a cell marked by what the larger set kept.
+//  2. a coarse grid over that region, about one cell per box of the larger set: the cells the
+//     smaller set touches are marked, the larger set keeps only its boxes that touch a marked
+//     cell, and then the smaller set keeps only its boxes that touch a cell marked by what the
+//     larger set kept.
 // Where the sets are mixed evenly (two layers over the same land) nothing is left out and the
 // filters cost two passes over the boxes; where one set is small or lies in a thin layer of
 // the other (particles on a floor, in a container) most of the larger set is left out.
@@ -50,12 +51,20 @@ public:
         auto& large = first_smaller ? kept.second : kept.first;
         const auto small_boxes = first_smaller ? first : second;
         const auto large_boxes = first_smaller ? second : first;
-        cull.size_grid(small.size());
-        if (cull.cell_count_ <= 1) return kept;
-        // Marking by a huge box costs as many cells as it covers: give up on the grid (keep
-        // what the region kept) when marking would cost more than a few passes over the boxes.
-        const std::size_t budget = 8 * (small.size() + large.size()) + cull.cell_count_;
-        if (!cull.mark(small_boxes, small, budget)) return kept;
+        // About one cell per box of the larger set, so that its boxes touch a few cells each and
+        // the smaller set marks only the cells near it. Marking by a large box costs as many
+        // cells as it covers: past a few passes over the boxes, a grid half as fine is tried,
+        // and with none left the grid is given up (what the region kept stays).
+        constexpr std::size_t cap = Dim == 2 ? 2048 : 160;
+        auto per_axis = static_cast<std::size_t>(std::pow(static_cast<double>(large.size()), 1.0 / Dim));
+        std::size_t budget = 0;
+        for (per_axis = std::clamp<std::size_t>(per_axis, 1, cap);; per_axis /= 2) {
+            if (per_axis < 2) return kept;
+            cull.size_grid(per_axis);
+            if (cull.cell_count_ <= 1) return kept;
+            budget = 8 * (small.size() + large.size()) + cull.cell_count_;
+            if (cull.mark(small_boxes, small, budget)) break;
+        }
         // Sets mixed over the whole region (two layers of the same land) mark nearly every
         // cell: the grid would leave out little, so its other passes are not worth making.
         if (cull.marked_ * 10 >= cull.cell_count_ * 9) return kept;
@@ -107,13 +116,10 @@ private:
         return kept;
     }
 
-    // About one cell per box of the smaller set: its boxes then mark a few cells each, and a
-    // box of the larger set is checked against few cells. Capped so the marks stay small.
-    void size_grid(std::size_t small_count) {
-        constexpr std::size_t cap = Dim == 2 ? 2048 : 160;
-        const auto per_axis = static_cast<std::size_t>(std::pow(static_cast<double>(small_count), 1.0 / Dim));
-        cells_per_axis_ = std::clamp<std::size_t>(per_axis, 1, cap);
+    void size_grid(std::size_t per_axis) {
+        cells_per_axis_ = per_axis;
         cell_count_ = 1;
+        marked_ = 0;
         for (int k = 0; k < Dim; ++k) {
             const double extent = hi_[k] - lo_[k];
             // A flat or overflowing extent puts everything in one cell on that axis.
