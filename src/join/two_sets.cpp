@@ -61,16 +61,26 @@ std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> first, 
         return pairs;
     }
 
-    // The kept boxes of the first set, then those of the second.
+    // A set the filters left nearly whole is detected whole: its boxes keep their own indices,
+    // where a lookup per pair (a cache miss each, on millions of pairs) would cost more than
+    // the few boxes saved. Exact all the same: every box that overlaps a box of the other set
+    // was kept, and the detection reports only boxes that overlap.
+    const bool whole_first = kept.first.size() * 8 > first.size() * 7;
+    const bool whole_second = kept.second.size() * 8 > second.size() * 7;
     std::vector<Box<Real, Dim>> both;
-    both.reserve(kept.first.size() + kept.second.size());
-    for (const std::size_t i : kept.first) both.push_back(first[i]);
-    for (const std::size_t j : kept.second) both.push_back(second[j]);
-    const std::size_t split = kept.first.size();
-    // Where a set was kept whole (sets mixed evenly), its indices are its own: looking them up
-    // would cost a cache miss per pair on millions of pairs.
-    const bool whole_first = kept.first.size() == first.size();
-    const bool whole_second = kept.second.size() == second.size();
+    both.reserve((whole_first ? first.size() : kept.first.size()) +
+                 (whole_second ? second.size() : kept.second.size()));
+    if (whole_first) {
+        both.insert(both.end(), first.begin(), first.end());
+    } else {
+        for (const std::size_t i : kept.first) both.push_back(first[i]);
+    }
+    const std::size_t split = both.size();
+    if (whole_second) {
+        both.insert(both.end(), second.begin(), second.end());
+    } else {
+        for (const std::size_t j : kept.second) both.push_back(second[j]);
+    }
 
     detect_union<Real, Dim>(both, settings, [&](std::span<const Pair> chunk) {
         for (const Pair& pair : chunk) {
