@@ -9,7 +9,7 @@
 // Scenes: `paper`, two independent placements of the paper's workload (E 0.4, H 2.5, the same
 // cube) of N and M boxes; `mesh`, N particles of the paper's workload against the boxes of a
 // triangulated height field through the middle of the cube, about M triangles (a mesh: fewer,
-// larger, thin boxes). Times are the median of R rounds, the methods alternated: wall time,
+// larger, thin boxes). Times are the median of R rounds, each round starting with the next method: wall time,
 // and in parentheses the process's CPU time (std::clock), which shows what other processes took;
 // the ratio is of the CPU times, which a busy machine disturbs less.
 
@@ -26,6 +26,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pair_digest.hpp"
@@ -213,17 +214,25 @@ int compare(const std::string& scene, std::size_t count_first, std::size_t count
         times[name].push_back(outcome.seconds);
         last[name] = outcome;
     };
-    for (int round = 0; round < rounds; ++round) {
-        timed("smb", [&] { return run_smb(first, second); });
-        timed("smb union", [&] { return run_smb_union(first, second); });
+    std::vector<std::pair<std::string, std::function<Outcome()>>> methods{
+        {"smb", [&] { return run_smb(first, second); }},
+        {"smb union", [&] { return run_smb_union(first, second); }},
+    };
 #if defined(SMB_BENCH_HAVE_CGAL)
-        timed("cgal", [&] {
-            double sort_seconds = 0;
-            const Outcome cgal = run_cgal(first, second, sort_seconds);
-            cgal_sort.push_back(sort_seconds);
-            return cgal;
-        });
+    methods.emplace_back("cgal", [&] {
+        double sort_seconds = 0;
+        const Outcome cgal = run_cgal(first, second, sort_seconds);
+        cgal_sort.push_back(sort_seconds);
+        return cgal;
+    });
 #endif
+    // Each round starts with the next method, so that none always runs first (after the scene
+    // was built) or always after the same other one.
+    for (int round = 0; round < rounds; ++round) {
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+            const auto& [name, method] = methods[(m + static_cast<std::size_t>(round)) % methods.size()];
+            timed(name, method);
+        }
     }
     bool agree = true;
     for (const auto& [name, outcome] : last)
