@@ -214,6 +214,7 @@ TYPED_TEST(TwoSetsTest, SettingsAndPipelinesDoNotChangeTheAnswer) {
             settings.pipeline = pipeline;
             settings.target_cell_population = population;
             settings.pair_chunk_size = 1;
+            settings.threads = population == 24 ? 2 : 1;  // the pairs do not depend on threads
             EXPECT_TRUE(same_list(find_overlapping_pairs(first, second, settings), expected));
         }
     }
