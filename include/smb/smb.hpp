@@ -7,6 +7,7 @@
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
+#include "smb/join.hpp"
 #include "smb/pair.hpp"
 #include "smb/pair_events.hpp"
 #include "smb/query.hpp"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// smb: the command-line face of the library. Subcommands: pairs, generate, run.
+// smb: the command-line face of the library. Subcommands: pairs, generate, run, join.
 // Exit statuses: exit_status.hpp.
 
 #include <CLI/CLI.hpp>
@@ -12,6 +12,7 @@
 #include "exit_status.hpp"
 #include "file_streams.hpp"
 #include "generate_command.hpp"
+#include "join_command.hpp"
 #include "pairs_command.hpp"
 #include "run_command.hpp"
 #include "smb/version.hpp"
@@ -64,6 +65,7 @@ int main(int argc, char** argv) {
     const smb::cli::PairsCommand pairs(app);
     const smb::cli::GenerateCommand generate(app);
     const smb::cli::RunCommand run(app);
+    const smb::cli::JoinCommand join(app);
 
     if (argc < 2) return argument_error(app, "no command given; the commands are " + command_names(app));
     if (const std::string unknown = unknown_command(app, argc, argv); !unknown.empty()) {
@@ -82,6 +84,7 @@ int main(int argc, char** argv) {
         if (pairs.selected()) status = pairs.run();
         if (generate.selected()) status = generate.run();
         if (run.selected()) status = run.run();
+        if (join.selected()) status = join.run();
         // What was printed must have reached its destination, or the run failed.
         smb::io::close_standard_output();
     } catch (const CLI::Error& error) {

@@ -19,8 +19,8 @@ constexpr std::size_t flush_threshold = std::size_t{1} << 20;
 
 }  // namespace
 
-PairWriter::PairWriter(std::ostream& out) : out_(out) {
-    buffer_.append(pair_header);
+PairWriter::PairWriter(std::ostream& out, std::string_view header) : out_(out) {
+    buffer_.append(header);
     buffer_ += '\n';
 }
 

@@ -9,6 +9,7 @@
 #include <ostream>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "smb/pair.hpp"
@@ -18,7 +19,8 @@ namespace smb::io {
 /// Writes the pair CSV, buffering the text in large blocks.
 class PairWriter {
 public:
-    explicit PairWriter(std::ostream& out);
+    /// `header`: the first line (without newline); `smb join` writes `frame,left,right`.
+    explicit PairWriter(std::ostream& out, std::string_view header = "frame,a,b");
     ~PairWriter();
     PairWriter(const PairWriter&) = delete;
     PairWriter& operator=(const PairWriter&) = delete;
