@@ -6,6 +6,7 @@
 
 #include "core/collected_pairs.hpp"
 #include "detector_state.hpp"
+#include "filters/filtered_sink.hpp"
 
 namespace smb {
 
@@ -49,6 +50,29 @@ template <std::floating_point Real, int Dim>
 DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const PairSink& sink) {
     if (!sink) throw ArgumentError("detect: the pair sink is empty");
     return state().detect(boxes, sink);
+}
+
+template <std::floating_point Real, int Dim>
+DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const DetectFilters& filters,
+                                        std::vector<Pair>& pairs) {
+    detail::check_filter_lengths(filters, boxes.size());
+    return detail::collect_pairs(pairs, state().settings().max_pairs_held, "DetectorSettings::max_pairs_held",
+                                 "detect(boxes, filters, sink)",
+                                 [&](const PairSink& sink) { return detect(boxes, filters, sink); });
+}
+
+template <std::floating_point Real, int Dim>
+DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const DetectFilters& filters,
+                                        const PairSink& sink) {
+    if (!sink) throw ArgumentError("detect: the pair sink is empty");
+    detail::check_filter_lengths(filters, boxes.size());
+    auto& state = this->state();
+    if (!detail::filters_in_use(filters)) return state.detect(boxes, sink);
+    detail::FilteredSink filtered(filters, sink, state.settings().pair_chunk_size);
+    DetectStats stats = state.detect(boxes, PairSink(std::ref(filtered)));
+    stats.pairs = filtered.finish();
+    state.set_reported_pairs(stats.pairs);
+    return stats;
 }
 
 template <std::floating_point Real, int Dim>

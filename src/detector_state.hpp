@@ -32,6 +32,8 @@ public:
     const DetectStats& last_stats() const noexcept { return stats_; }
     HeldPrecision last_precision() const noexcept { return pipeline_.precision(); }
     std::size_t last_retested_pairs() const noexcept { return retested_; }
+    /// A filtered detection reported fewer pairs than it found (filters/filtered_sink.hpp).
+    void set_reported_pairs(std::size_t pairs) noexcept { stats_.pairs = pairs; }
 
     void clear() {
         pipeline_.clear();

@@ -88,17 +88,23 @@ void World<Real, Dim>::remove(std::span<const BoxId> ids) {
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::update(BoxId id, const box_type& box) {
-    state().store().update(std::span(&id, 1), std::span(&box, 1));
+    auto& state = this->state();
+    state.store().update(std::span(&id, 1), std::span(&box, 1));
+    state.filters().note_updated(state.store(), std::span(&id, 1));
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::update(std::span<const BoxId> ids, std::span<const box_type> boxes) {
-    state().store().update(ids, boxes);
+    auto& state = this->state();
+    state.store().update(ids, boxes);
+    state.filters().note_updated(state.store(), ids);
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::assign(std::span<const box_type> boxes) {
-    state().store().assign(boxes);
+    auto& state = this->state();
+    state.filters().note_assign(state.store(), boxes);
+    state.store().assign(boxes);
 }
 
 template <std::floating_point Real, int Dim>
@@ -139,6 +145,54 @@ template <std::floating_point Real, int Dim>
 DetectStats World<Real, Dim>::detect(const PairSink& sink) {
     if (!sink) throw ArgumentError("detect: the pair sink is empty");
     return state().detect(sink);
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_filter(BoxId id, const Filter& filter) {
+    auto& state = this->state();
+    state.filters().set_filter(state.store().slot_of(id), filter, state.store().slot_count());
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_filter(std::span<const BoxId> ids, std::span<const Filter> filters) {
+    if (ids.size() != filters.size())
+        throw ArgumentError("set_filter: " + std::to_string(ids.size()) + " ids but " + std::to_string(filters.size()) +
+                            " filters");
+    auto& state = this->state();
+    const auto& store = state.store();
+    for (const BoxId id : ids) (void)store.slot_of(id);  // throws before any change
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        state.filters().set_filter(store.slot_of(ids[i]), filters[i], store.slot_count());
+}
+
+template <std::floating_point Real, int Dim>
+Filter World<Real, Dim>::filter(BoxId id) const {
+    if (!state_) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
+    return state_->filters().filter_at(state_->store().slot_of(id));
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_static(BoxId id, bool is_static) {
+    set_static(std::span(&id, 1), is_static);
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_static(std::span<const BoxId> ids, bool is_static) {
+    auto& state = this->state();
+    const auto& store = state.store();
+    for (const BoxId id : ids) (void)store.slot_of(id);  // throws before any change
+    for (const BoxId id : ids) state.filters().set_static(store.slot_of(id), is_static, store.slot_count());
+}
+
+template <std::floating_point Real, int Dim>
+bool World<Real, Dim>::is_static(BoxId id) const {
+    if (!state_) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
+    return state_->filters().static_at(state_->store().slot_of(id));
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_pair_predicate(PairPredicate predicate) {
+    state().filters().set_predicate(std::move(predicate));
 }
 
 template <std::floating_point Real, int Dim>

@@ -10,6 +10,7 @@
 
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
+#include "smb/filter.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
@@ -81,6 +82,15 @@ public:
     /// Reports every overlapping pair to `sink`, in chunks of settings().pair_chunk_size. An
     /// exception thrown by the sink ends the detection and propagates; the detector stays valid.
     DetectStats detect(std::span<const box_type> boxes, const PairSink& sink);
+
+    /// The same detections with filters (smb/filter.hpp): a pair of indices is reported when
+    /// the boxes overlap, their filters pass, they are not both static, and the predicate (if
+    /// any) says yes. Each span of `filters` is empty or holds one entry per box, else
+    /// ArgumentError before anything changes. The filters are applied to the pairs the
+    /// detection finds: a Detector saves the pairs' way to the caller, not the detection; a
+    /// World keeps statics and boxes that pair with nothing out of its detection (docs/filters.md).
+    DetectStats detect(std::span<const box_type> boxes, const DetectFilters& filters, std::vector<Pair>& pairs);
+    DetectStats detect(std::span<const box_type> boxes, const DetectFilters& filters, const PairSink& sink);
 
     /// Forgets the cuts and the order, and releases the memory held; keeps the settings.
     void clear();

@@ -5,6 +5,7 @@
 #include "smb/box.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
+#include "smb/filter.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"

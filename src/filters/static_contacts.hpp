@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Moving-against-static pairs through a cache per moving box, like a Verlet skin: each moving
+// box keeps a fat box (itself grown by a skin) and a contiguous copy of the statics that
+// overlap the fat box and whose filter bits pass with its own. While a box stays inside its fat
+// box, a step tests it against its copies alone (sequential memory, no grid); a box that left
+// it, or whose filter or statics changed, asks the grid (static_grid.hpp) again. The copies live
+// in one pool; a fresh query appends to it, and the pool is closed up when half of it is dead.
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/pair_output.hpp"
+#include "filters/static_grid.hpp"
+#include "smb/box.hpp"
+#include "smb/filter.hpp"
+#include "smb/pair.hpp"
+
+namespace smb::detail {
+
+template <std::floating_point Real, int Dim>
+class StaticContacts {
+public:
+    using box_type = Box<Real, Dim>;
+
+    /// Moving boxes that asked the grid again in the last detection.
+    [[nodiscard]] std::size_t refreshed() const noexcept { return refreshed_; }
+
+    void clear() { *this = StaticContacts(); }
+
+    /// Every moving box asks the grid again at the next detection (the statics changed).
+    void invalidate_all() {
+        for (Entry& e : entries_) e.valid = false;
+    }
+    void invalidate(std::size_t i) { entries_[i].valid = false; }
+    /// A new moving box at the end; it asks the grid at the next detection.
+    void push_back() { entries_.push_back(Entry{}); }
+    /// Box `from` (the last) now sits at `to`: a swap-remove of the box at `to`.
+    void move_last_to(std::size_t to) {
+        dead_ += entries_[to].count;
+        entries_[to] = entries_.back();
+        entries_.pop_back();
+    }
+    void pop_back() {
+        dead_ += entries_.back().count;
+        entries_.pop_back();
+    }
+
+    /// Reports every pair of moving box i (boxes[i], ids[i], filters[i]) and a static that
+    /// overlap and whose bits pass, through the predicate if there is one.
+    void detect(std::span<const box_type> boxes, std::span<const BoxId> ids, std::span<const Filter> filters,
+                const StaticGrid<Real, Dim>& grid, const PairPredicate* predicate, PairOutput& output) {
+        refreshed_ = 0;
+        if (grid.empty()) return;
+        if (dead_ > 4096 && 2 * dead_ > pool_.size()) close_up();
+        const double skin_floor = 0.125 * grid.smallest_cell_side();
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            const box_type& box = boxes[i];
+            Entry& e = entries_[i];
+            if (!e.valid || !inside(box, e.fat)) refresh(e, box, filters[i], grid, skin_floor);
+            const Cached* first = pool_.data() + e.offset;
+            for (const Cached* c = first; c != first + e.count; ++c) {
+                if (!overlaps(c->box, box)) continue;
+                const BoxId a = ids[i];
+                const BoxId b = grid.id(c->index);
+                if (predicate != nullptr) {
+                    const Pair pair = ordered_pair(a, b);
+                    if (!(*predicate)(pair.a, pair.b)) continue;
+                }
+                output(a, b);
+            }
+        }
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        return entries_.capacity() * sizeof(Entry) + pool_.capacity() * sizeof(Cached);
+    }
+
+private:
+    struct Entry {
+        box_type fat{};
+        std::size_t offset = 0;
+        std::uint32_t count = 0;
+        bool valid = false;
+    };
+    struct Cached {
+        box_type box;
+        std::uint32_t index;  // in the grid
+    };
+
+    static bool inside(const box_type& box, const box_type& fat) noexcept {
+        for (int k = 0; k < Dim; ++k) {
+            if (box.min[k] < fat.min[k] || box.max[k] > fat.max[k]) return false;
+        }
+        return true;
+    }
+
+    /// The skin: a quarter of the box's largest side, so that a box may travel about that far
+    /// before it asks again; at least an eighth of a grid cell, for boxes of (almost) no size.
+    void refresh(Entry& e, const box_type& box, const Filter& filter, const StaticGrid<Real, Dim>& grid,
+                 double skin_floor) {
+        ++refreshed_;
+        double largest = 0;
+        for (int k = 0; k < Dim; ++k)
+            largest = std::max(largest, static_cast<double>(box.max[k]) - static_cast<double>(box.min[k]));
+        const auto skin = static_cast<Real>(std::max(0.25 * largest, skin_floor));
+        for (int k = 0; k < Dim; ++k) {
+            // Rounding keeps the box inside: x - skin rounds to at most x, x + skin to at least x.
+            e.fat.min[k] = box.min[k] - skin;
+            e.fat.max[k] = box.max[k] + skin;
+        }
+        dead_ += e.count;
+        e.offset = pool_.size();
+        grid.query(e.fat, [&](std::uint32_t s) {
+            if (filters_pass(filter, grid.filter(s))) pool_.push_back(Cached{grid.box(s), s});
+        });
+        e.count = static_cast<std::uint32_t>(pool_.size() - e.offset);
+        e.valid = true;
+    }
+
+    /// Copies the live ranges into a fresh pool in the boxes' order.
+    void close_up() {
+        std::vector<Cached> pool;
+        pool.reserve(pool_.size() - dead_ + pool_.size() / 8);
+        for (Entry& e : entries_) {
+            const std::size_t offset = pool.size();
+            pool.insert(pool.end(), pool_.begin() + static_cast<std::ptrdiff_t>(e.offset),
+                        pool_.begin() + static_cast<std::ptrdiff_t>(e.offset + e.count));
+            e.offset = offset;
+        }
+        pool_.swap(pool);
+        dead_ = 0;
+    }
+
+    std::vector<Entry> entries_;
+    std::vector<Cached> pool_;
+    std::size_t dead_ = 0;  // pool entries no box points to
+    std::size_t refreshed_ = 0;
+};
+
+}  // namespace smb::detail
