@@ -53,6 +53,7 @@ inline Filter random_filter(Random& random) {
     f.category = static_cast<std::uint32_t>(uniform_index(random, 4));  // 0..3
     f.mask = static_cast<std::uint32_t>(uniform_index(random, 8));      // 0..7
     if (chance(random, 0.3)) f = Filter{};
+    if (chance(random, 0.05)) f = Filter{f.category << 20, f.mask | (f.mask << 20)};  // past 16 bits
     return f;
 }
 
@@ -62,6 +63,7 @@ struct Scenario {
     bool predicate = false;
     int steps = 25;
     std::size_t count = 400;
+    BoxId first_id = 0;  // from 2^32 on, the pipeline's keys cannot hold the ids
 };
 
 template <typename WorldType>
@@ -78,7 +80,7 @@ protected:
         space_ = std::pow(static_cast<double>(count) * std::pow(1.5, Dim) / 0.35, 1.0 / Dim);
         World<Real, Dim> world(test_settings());
         std::map<BoxId, Entry<Real, Dim>> entries;
-        BoxId next = 0;
+        BoxId next = scenario.first_id;
         auto add = [&](BoxId id) {
             const BoxT box = random_box<Real, Dim>(random, 0, space_, 1.0, 2.0);
             world.insert(id, box);
@@ -168,6 +170,12 @@ TYPED_TEST_SUITE(WorldFiltersTest, WorldTypes, WorldTypeNames);
 
 TYPED_TEST(WorldFiltersTest, RandomFilterBitsMatchBruteForce) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) this->run({}, seed);
+}
+
+TYPED_TEST(WorldFiltersTest, RandomFilterBitsWithLargeIdsAndCategoriesMatchBruteForce) {
+    Scenario scenario;
+    scenario.first_id = BoxId{1} << 40;
+    this->run(scenario, 4);
 }
 
 TYPED_TEST(WorldFiltersTest, StaticsThatMoveLeaveAndTurnDynamicMatchBruteForce) {

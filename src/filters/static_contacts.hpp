@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/pair_output.hpp"
+#include "filters/filtered_report.hpp"
 #include "filters/static_grid.hpp"
 #include "smb/box.hpp"
 #include "smb/filter.hpp"
@@ -49,10 +50,10 @@ public:
         entries_.pop_back();
     }
 
-    /// Reports every pair of moving box i (boxes[i], ids[i], filters[i]) and a static that
-    /// overlap and whose bits pass, through the predicate if there is one.
-    void detect(std::span<const box_type> boxes, std::span<const BoxId> ids, std::span<const Filter> filters,
-                const StaticGrid<Real, Dim>& grid, const PairPredicate* predicate, PairOutput& output) {
+    /// Reports every pair of moving box i (boxes[i], with info[i]'s id and filter) and a static
+    /// that overlap and whose bits pass, through the predicate if there is one.
+    void detect(std::span<const box_type> boxes, std::span<const IdFilter> info, const StaticGrid<Real, Dim>& grid,
+                const PairPredicate* predicate, PairOutput& output) {
         refreshed_ = 0;
         if (grid.empty()) return;
         if (dead_ > 4096 && 2 * dead_ > pool_.size()) close_up();
@@ -60,11 +61,11 @@ public:
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             const box_type& box = boxes[i];
             Entry& e = entries_[i];
-            if (!e.valid || !inside(box, e.fat)) refresh(e, box, filters[i], grid, skin_floor);
+            if (!e.valid || !inside(box, e.fat)) refresh(e, box, info[i].filter, grid, skin_floor);
             const Cached* first = pool_.data() + e.offset;
             for (const Cached* c = first; c != first + e.count; ++c) {
                 if (!overlaps(c->box, box)) continue;
-                const BoxId a = ids[i];
+                const BoxId a = info[i].id;
                 const BoxId b = grid.id(c->index);
                 if (predicate != nullptr) {
                     const Pair pair = ordered_pair(a, b);

@@ -98,8 +98,8 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return boxes_.capacity() * sizeof(box_type) + ids_.capacity() * sizeof(BoxId) +
-               filters_.capacity() * sizeof(Filter) + (start_.capacity() + items_.capacity() + oversized_.capacity()) *
-                                                          sizeof(std::uint32_t);
+               filters_.capacity() * sizeof(Filter) +
+               (start_.capacity() + items_.capacity() + oversized_.capacity()) * sizeof(std::uint32_t);
     }
 
 private:

@@ -46,8 +46,12 @@ public:
     /// Whether the last detection ran this path.
     [[nodiscard]] bool engaged() const noexcept { return engaged_; }
 
-    [[nodiscard]] Filter filter_at(Slot slot) const noexcept { return slot < filters_.size() ? filters_[slot] : Filter{}; }
-    [[nodiscard]] bool static_at(Slot slot) const noexcept { return slot < statics_flag_.size() && statics_flag_[slot]; }
+    [[nodiscard]] Filter filter_at(Slot slot) const noexcept {
+        return slot < filters_.size() ? filters_[slot] : Filter{};
+    }
+    [[nodiscard]] bool static_at(Slot slot) const noexcept {
+        return slot < statics_flag_.size() && statics_flag_[slot];
+    }
     [[nodiscard]] HeldPrecision precision() const noexcept { return pipeline_.precision(); }
     [[nodiscard]] std::size_t retested() const noexcept { return pipeline_.retested(); }
 
@@ -107,8 +111,8 @@ public:
         std::vector<Slot>().swap(moving_);
         std::vector<Slot>().swap(position_);
         std::vector<box_type>().swap(gathered_);
-        std::vector<BoxId>().swap(gathered_ids_);
-        std::vector<Filter>().swap(gathered_filters_);
+        std::vector<BoxId>().swap(gathered_keys_);
+        std::vector<IdFilter>().swap(gathered_info_);
         known_ = 0;
         engaged_ = false;
         statics_changed_ = true;
@@ -123,8 +127,7 @@ public:
 
     /// The filtered detection: compacts the store (the caller's pipelines were told to forget
     /// it when this path engaged), then reports every pair that passes.
-    void detect(BoxStore<Real, Dim>& store, const DetectionSettings& settings, PairOutput& output,
-                DetectStats& stats) {
+    void detect(BoxStore<Real, Dim>& store, const DetectionSettings& settings, PairOutput& output, DetectStats& stats) {
         const Stopwatch update;
         if (!engaged_) {
             engaged_ = true;
@@ -157,17 +160,22 @@ public:
             pipeline_.judge(boxes, bounds);
             pipeline_.forget_slots_from(boxes.size());
             stats.scan_seconds = scan.seconds();
-            FilteredReport<PairOutput> report(output, gathered_ids_, gathered_filters_, predicate);
-            pipeline_.detect(boxes, {}, bounds, settings, report, stats);
+            if (packed_) {
+                PackedFilterReport<PairOutput> report(output, predicate);
+                pipeline_.detect(boxes, gathered_keys_, bounds, settings, report, stats);
+            } else {
+                FilteredReport<PairOutput> report(output, gathered_info_, predicate);
+                pipeline_.detect(boxes, {}, bounds, settings, report, stats);
+            }
         }
-        contacts_.detect(gathered_, gathered_ids_, gathered_filters_, grid_, predicate, output);
+        contacts_.detect(gathered_, gathered_info_, grid_, predicate, output);
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return filters_.capacity() * sizeof(Filter) + statics_flag_.capacity() +
                (pending_.capacity() + moving_.capacity() + position_.capacity()) * sizeof(Slot) +
-               gathered_.capacity() * sizeof(box_type) + gathered_ids_.capacity() * sizeof(BoxId) +
-               gathered_filters_.capacity() * sizeof(Filter) + pipeline_.bytes_held() + grid_.bytes_held() +
+               gathered_.capacity() * sizeof(box_type) + gathered_keys_.capacity() * sizeof(BoxId) +
+               gathered_info_.capacity() * sizeof(IdFilter) + pipeline_.bytes_held() + grid_.bytes_held() +
                contacts_.bytes_held();
     }
 
@@ -180,9 +188,7 @@ private:
         if (position_.size() < slot_count) position_.resize(slot_count, kNowhere);
     }
 
-    [[nodiscard]] bool moves(Slot s) const noexcept {
-        return statics_flag_[s] == 0 && filter_interacts(filters_[s]);
-    }
+    [[nodiscard]] bool moves(Slot s) const noexcept { return statics_flag_[s] == 0 && filter_interacts(filters_[s]); }
 
     /// Puts slot s in the list of moving boxes or takes it out, as its flags say now; a box that
     /// stays asks the grid again (its filter may have changed).
@@ -262,20 +268,27 @@ private:
 
     void gather(const BoxStore<Real, Dim>& store) {
         gathered_.resize(moving_.size());
-        gathered_ids_.resize(moving_.size());
-        gathered_filters_.resize(moving_.size());
+        gathered_info_.resize(moving_.size());
+        packed_ = true;
         for (std::size_t i = 0; i < moving_.size(); ++i) {
             const Slot s = moving_[i];
             gathered_[i] = store.box_at(s);
-            gathered_ids_[i] = store.id_at(s);
-            gathered_filters_[i] = filters_[s];
+            gathered_info_[i] = IdFilter{store.id_at(s), filters_[s]};
+            packed_ = packed_ && packable(gathered_info_[i].id, filters_[s]);
         }
+        if (!packed_) {
+            std::vector<BoxId>().swap(gathered_keys_);
+            return;
+        }
+        gathered_keys_.resize(moving_.size());
+        for (std::size_t i = 0; i < moving_.size(); ++i)
+            gathered_keys_[i] = packed_key(gathered_info_[i].id, gathered_info_[i].filter);
     }
 
     // Per slot of the store (grown to its slot count on demand; a missing entry is the default).
     std::vector<Filter> filters_;
     std::vector<std::uint8_t> statics_flag_;
-    std::vector<Slot> position_;  // in moving_, or kNowhere
+    std::vector<Slot> position_;   // in moving_, or kNowhere
     std::size_t statics_ = 0;      // slots flagged static
     std::size_t non_default_ = 0;  // slots whose filter is not the default
     PairPredicate predicate_;
@@ -287,8 +300,9 @@ private:
     bool statics_changed_ = true;
 
     std::vector<box_type> gathered_;
-    std::vector<BoxId> gathered_ids_;
-    std::vector<Filter> gathered_filters_;
+    std::vector<IdFilter> gathered_info_;  // index i's id and filter
+    std::vector<BoxId> gathered_keys_;     // index i's key for the pipeline, when packed_
+    bool packed_ = false;
     HeldCutPipeline<Real, Dim> pipeline_;
     StaticGrid<Real, Dim> grid_;
     StaticContacts<Real, Dim> contacts_;
