@@ -45,6 +45,7 @@ public:
         oversized_.clear();
         if (boxes_.empty()) return;
         choose_cells();
+        order_by_home_cell();
         // Two passes over the statics: count per cell, then place (CSR).
         start_.assign(cell_count_ + 1, 0);
         std::vector<std::uint8_t> gridded(boxes_.size(), 0);
@@ -103,6 +104,35 @@ public:
     }
 
 private:
+    /// Sorts the statics by the cell of their lower corner (a counting sort), so that a cell's
+    /// entries, and the entries of neighbouring cells, are runs of neighbouring statics: a
+    /// query then reads the statics' boxes nearly in order instead of one cache miss each.
+    void order_by_home_cell() {
+        std::vector<std::size_t> home(boxes_.size());
+        std::vector<std::size_t> first(cell_count_ + 1, 0);
+        for (std::size_t i = 0; i < boxes_.size(); ++i) {
+            std::array<std::size_t, Dim> lo{}, hi{};
+            span_of(boxes_[i], lo, hi);
+            std::size_t cell = 0;
+            for_cells(lo, lo, [&](std::size_t c, const std::array<std::size_t, Dim>&) { cell = c; });
+            home[i] = cell;
+            ++first[cell + 1];
+        }
+        for (std::size_t c = 0; c < cell_count_; ++c) first[c + 1] += first[c];
+        std::vector<box_type> boxes(boxes_.size());
+        std::vector<BoxId> ids(ids_.size());
+        std::vector<Filter> filters(filters_.size());
+        for (std::size_t i = 0; i < boxes_.size(); ++i) {
+            const std::size_t to = first[home[i]]++;
+            boxes[to] = boxes_[i];
+            ids[to] = ids_[i];
+            filters[to] = filters_[i];
+        }
+        boxes_.swap(boxes);
+        ids_.swap(ids);
+        filters_.swap(filters);
+    }
+
     static constexpr std::size_t kMaxSpan = 4;
 
     /// Cells about twice the mean static on each axis (so that a static lies in few cells and a

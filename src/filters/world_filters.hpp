@@ -144,6 +144,7 @@ public:
         }
         known_ = store.slot_count();
         grow(known_);
+        const bool statics_rebuilt = statics_changed_;
         if (statics_changed_) rebuild_statics(store);
         gather(store);
         stats.update_seconds = update.seconds();
@@ -168,7 +169,10 @@ public:
                 pipeline_.detect(boxes, {}, bounds, settings, report, stats);
             }
         }
+        stats.skin_rebuilt = statics_rebuilt;
         contacts_.detect(gathered_, gathered_info_, grid_, predicate, output);
+        stats.skin_refreshed = contacts_.refreshed();
+        stats.skin_candidates = contacts_.cached();
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
