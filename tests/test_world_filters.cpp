@@ -218,8 +218,15 @@ TEST(WorldFilters, TwoSetsAsCategoriesPairOnlyAcross) {
     EXPECT_EQ(pairs, (std::vector<Pair>{{1, 3}, {2, 3}}));
 }
 
-TEST(WorldFilters, DefaultFiltersAgainReturnToTheDefaultDetection) {
-    World3d world;
+/// Both pipelines: the filtered path takes over from either and hands back to it.
+class WorldFiltersPipelines : public ::testing::TestWithParam<Pipeline> {};
+INSTANTIATE_TEST_SUITE_P(BothPipelines, WorldFiltersPipelines,
+                         ::testing::Values(Pipeline::persistent_cuts, Pipeline::paper_lists));
+
+TEST_P(WorldFiltersPipelines, DefaultFiltersAgainReturnToTheDefaultDetection) {
+    WorldSettings settings;
+    settings.pipeline = GetParam();
+    World3d world(settings);
     world.insert(1, Box3d{{0, 0, 0}, {1, 1, 1}});
     world.insert(2, Box3d{{1, 1, 1}, {2, 2, 2}});
     world.insert(3, Box3d{{0, 0, 0}, {2, 2, 2}});
@@ -236,6 +243,19 @@ TEST(WorldFilters, DefaultFiltersAgainReturnToTheDefaultDetection) {
     EXPECT_EQ(pairs, (std::vector<Pair>{{1, 2}, {1, 3}, {2, 3}}));
     EXPECT_EQ(world.filter(1), Filter{});
     EXPECT_FALSE(world.is_static(3));
+    // Removals and arrivals while each path runs, then back and forth once more.
+    world.remove(2);
+    world.insert(4, Box3d{{1.5, 1.5, 1.5}, {3, 3, 3}});
+    world.set_static(4, true);
+    world.detect(pairs);
+    sort_pairs(pairs);
+    EXPECT_EQ(pairs, (std::vector<Pair>{{1, 3}, {3, 4}}));
+    world.remove(3);
+    world.insert(5, Box3d{{0, 0, 0}, {0.5, 0.5, 0.5}});
+    world.set_static(4, false);
+    world.detect(pairs);
+    sort_pairs(pairs);
+    EXPECT_EQ(pairs, (std::vector<Pair>{{1, 5}}));
 }
 
 TEST(WorldFilters, PredicateSeesOrderedPairsThatPassTheBits) {
