@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/collected_pairs.hpp"
+#include "core/scene_bounds.hpp"
 #include "detector_state.hpp"
 #include "filters/filtered_sink.hpp"
 
@@ -68,10 +69,21 @@ DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const D
     detail::check_filter_lengths(filters, boxes.size());
     auto& state = this->state();
     if (!detail::filters_in_use(filters)) return state.detect(boxes, sink);
-    detail::FilteredSink filtered(filters, sink, state.settings().pair_chunk_size);
-    DetectStats stats = state.detect(boxes, PairSink(std::ref(filtered)));
+    // Boxes that pair with nothing stay out of the detection. The boxes are checked first, so
+    // that an invalid one is named by its index in the caller's array.
+    bool gathered = false;
+    if (!filters.filters.empty()) {
+        (void)detail::checked_bounds(boxes);
+        gathered = detail::gather_interacting(boxes, filters.filters, state.gathered(), state.gathered_origin());
+    }
+    detail::FilteredSink filtered(
+        filters, sink, state.settings().pair_chunk_size,
+        gathered ? std::span<const std::uint32_t>(state.gathered_origin()) : std::span<const std::uint32_t>());
+    DetectStats stats =
+        state.detect(gathered ? std::span<const box_type>(state.gathered()) : boxes, PairSink(std::ref(filtered)));
+    stats.boxes = boxes.size();
     stats.pairs = filtered.finish();
-    state.set_reported_pairs(stats.pairs);
+    state.set_reported(stats.boxes, stats.pairs);
     return stats;
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "reference/brute_force.hpp"
@@ -66,6 +67,26 @@ TYPED_TEST(DetectorFiltersTest, RandomFiltersStaticsAndPredicateMatchBruteForce)
         EXPECT_EQ(detector.last_stats().pairs, pairs.size());
         ASSERT_TRUE(same_pairs(pairs, expected));
     }
+}
+
+TEST(DetectorFilters, AnInvalidBoxIsNamedByItsIndexWhenBoxesAreLeftOut) {
+    Detector3f detector;
+    std::vector<Box3f> boxes(3, Box3f{{0, 0, 0}, {1, 1, 1}});
+    boxes[2].min[1] = 2;  // min > max
+    const std::vector<Filter> filters = {Filter{0, 0}, Filter{}, Filter{}};
+    DetectFilters f;
+    f.filters = filters;
+    std::vector<Pair> pairs;
+    try {
+        detector.detect(boxes, f, pairs);
+        FAIL() << "no error";
+    } catch (const InvalidBoxError& error) {
+        EXPECT_NE(std::string(error.what()).find("box 2"), std::string::npos) << error.what();
+    }
+    boxes[2] = boxes[1];
+    const DetectStats stats = detector.detect(boxes, f, pairs);
+    EXPECT_EQ(pairs, (std::vector<Pair>{{1, 2}}));
+    EXPECT_EQ(stats.boxes, 3u);
 }
 
 TEST(DetectorFilters, SpansOfTheWrongLengthThrowAndChangeNothing) {

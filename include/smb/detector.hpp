@@ -86,9 +86,9 @@ public:
     /// The same detections with filters (smb/filter.hpp): a pair of indices is reported when
     /// the boxes overlap, their filters pass, they are not both static, and the predicate (if
     /// any) says yes. Each span of `filters` is empty or holds one entry per box, else
-    /// ArgumentError before anything changes. The filters are applied to the pairs the
-    /// detection finds: a Detector saves the pairs' way to the caller, not the detection; a
-    /// World keeps statics and boxes that pair with nothing out of its detection (docs/filters.md).
+    /// ArgumentError before anything changes. Boxes whose category or mask is 0 are left out
+    /// of the detection; the other filters, the static flags and the predicate are applied to
+    /// the pairs it finds (a World also keeps its statics out of its detection: docs/filters.md).
     DetectStats detect(std::span<const box_type> boxes, const DetectFilters& filters, std::vector<Pair>& pairs);
     DetectStats detect(std::span<const box_type> boxes, const DetectFilters& filters, const PairSink& sink);
 
