@@ -322,6 +322,16 @@ TEST(WorldFilters, StaticsNeverPairAndUnmovedStaticsAreNotIndexedAgain) {
         const auto low = static_cast<BoxId>(std::floor(z) - 1 + (z == std::floor(z) ? 0 : 1));
         EXPECT_EQ(pairs, (std::vector<Pair>{{low, 100}, {low + 1, 100}})) << z;
     }
+    // Touching counts: faces shared exactly with the slabs below and above.
+    world.update(100, Box3d{{1, 1, 30}, {2, 2, 31}});
+    world.detect(pairs);
+    sort_pairs(pairs);
+    EXPECT_EQ(pairs, (std::vector<Pair>{{29, 100}, {30, 100}, {31, 100}}));
+    world.update(100, Box3d{{1, 1, std::nextafter(31.0, 32.0)}, {2, 2, 32}});
+    world.detect(pairs);
+    sort_pairs(pairs);
+    EXPECT_EQ(pairs, (std::vector<Pair>{{31, 100}, {32, 100}}));
+    world.update(100, Box3d{{1, 1, 20.2}, {2, 2, 21.2}});
     world.update(20, Box3d{{0, 0, 60}, {10, 10, 61}});
     world.detect(pairs);
     sort_pairs(pairs);
