@@ -218,6 +218,30 @@ TEST(WorldFilters, TwoSetsAsCategoriesPairOnlyAcross) {
     EXPECT_EQ(pairs, (std::vector<Pair>{{1, 3}, {2, 3}}));
 }
 
+TEST(WorldFilters, AssignSeesStaticsThatMovedOrLeft) {
+    World2d world;
+    std::vector<Box2d> boxes = {Box2d{{0, 0}, {1, 1}}, Box2d{{5, 5}, {6, 6}}, Box2d{{0.5, 0.5}, {2, 2}},
+                                Box2d{{9, 9}, {10, 10}}};
+    world.assign(boxes);
+    const std::vector<BoxId> statics = {0, 1, 3};
+    world.set_static(statics, true);
+    std::vector<Pair> pairs;
+    world.detect(pairs);
+    EXPECT_EQ(pairs, (std::vector<Pair>{{0, 2}}));
+    boxes[1] = Box2d{{1.5, 1.5}, {3, 3}};  // a static moves onto box 2
+    world.assign(boxes);
+    world.detect(pairs);
+    sort_pairs(pairs);
+    EXPECT_EQ(pairs, (std::vector<Pair>{{0, 2}, {1, 2}}));
+    boxes[2] = Box2d{{9, 9}, {9.5, 9.5}};  // box 2 moves onto static 3, which assign() then drops
+    boxes.pop_back();
+    world.assign(boxes);
+    world.detect(pairs);
+    EXPECT_TRUE(pairs.empty());
+    EXPECT_TRUE(world.is_static(1));
+    EXPECT_FALSE(world.contains(3));
+}
+
 /// Both pipelines: the filtered path takes over from either and hands back to it.
 class WorldFiltersPipelines : public ::testing::TestWithParam<Pipeline> {};
 INSTANTIATE_TEST_SUITE_P(BothPipelines, WorldFiltersPipelines,
