@@ -5,9 +5,7 @@
 #include <string>
 
 #include "core/collected_pairs.hpp"
-#include "core/scene_bounds.hpp"
 #include "detector_state.hpp"
-#include "filters/filtered_sink.hpp"
 
 namespace smb {
 
@@ -51,40 +49,6 @@ template <std::floating_point Real, int Dim>
 DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const PairSink& sink) {
     if (!sink) throw ArgumentError("detect: the pair sink is empty");
     return state().detect(boxes, sink);
-}
-
-template <std::floating_point Real, int Dim>
-DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const DetectFilters& filters,
-                                        std::vector<Pair>& pairs) {
-    detail::check_filter_lengths(filters, boxes.size());
-    return detail::collect_pairs(pairs, state().settings().max_pairs_held, "DetectorSettings::max_pairs_held",
-                                 "detect(boxes, filters, sink)",
-                                 [&](const PairSink& sink) { return detect(boxes, filters, sink); });
-}
-
-template <std::floating_point Real, int Dim>
-DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const DetectFilters& filters,
-                                        const PairSink& sink) {
-    if (!sink) throw ArgumentError("detect: the pair sink is empty");
-    detail::check_filter_lengths(filters, boxes.size());
-    auto& state = this->state();
-    if (!detail::filters_in_use(filters)) return state.detect(boxes, sink);
-    // Boxes that pair with nothing stay out of the detection. The boxes are checked first, so
-    // that an invalid one is named by its index in the caller's array.
-    bool gathered = false;
-    if (!filters.filters.empty()) {
-        (void)detail::checked_bounds(boxes);
-        gathered = detail::gather_interacting(boxes, filters.filters, state.gathered(), state.gathered_origin());
-    }
-    detail::FilteredSink filtered(
-        filters, sink, state.settings().pair_chunk_size,
-        gathered ? std::span<const std::uint32_t>(state.gathered_origin()) : std::span<const std::uint32_t>());
-    DetectStats stats =
-        state.detect(gathered ? std::span<const box_type>(state.gathered()) : boxes, PairSink(std::ref(filtered)));
-    stats.boxes = boxes.size();
-    stats.pairs = filtered.finish();
-    state.set_reported(stats.boxes, stats.pairs);
-    return stats;
 }
 
 template <std::floating_point Real, int Dim>
