@@ -93,25 +93,25 @@ DetectStats Detector<Real, Dim>::detect(std::span<const Box<Real, Dim>> boxes, c
     detail::FilteredSink filtered(
         filters, sink, state.settings().pair_chunk_size,
         gathered ? std::span<const std::uint32_t>(state.gathered_origin()) : std::span<const std::uint32_t>());
-    DetectStats stats =
-        state.detect(gathered ? std::span<const Box<Real, Dim>>(state.gathered()) : boxes, PairSink(std::ref(filtered)));
+    DetectStats stats = state.detect(gathered ? std::span<const Box<Real, Dim>>(state.gathered()) : boxes,
+                                     PairSink(std::ref(filtered)));
     stats.boxes = boxes.size();
     stats.pairs = filtered.finish();
     state.set_reported(stats.boxes, stats.pairs);
     return stats;
 }
 
-#define SMB_INSTANTIATE(Real, Dim)                                                                              \
-    template void World<Real, Dim>::set_filter(BoxId, const Filter&);                                         \
+#define SMB_INSTANTIATE(Real, Dim)                                                                          \
+    template void World<Real, Dim>::set_filter(BoxId, const Filter&);                                       \
     template void World<Real, Dim>::set_filter(std::span<const BoxId>, std::span<const Filter>);            \
-    template Filter World<Real, Dim>::filter(BoxId) const;                                                    \
-    template void World<Real, Dim>::set_static(BoxId, bool);                                                  \
-    template void World<Real, Dim>::set_static(std::span<const BoxId>, bool);                                 \
-    template bool World<Real, Dim>::is_static(BoxId) const;                                                   \
-    template void World<Real, Dim>::set_pair_predicate(PairPredicate);                                        \
-    template DetectStats Detector<Real, Dim>::detect(std::span<const Box<Real, Dim>>, const DetectFilters&,  \
-                                                     std::vector<Pair>&);                                     \
-    template DetectStats Detector<Real, Dim>::detect(std::span<const Box<Real, Dim>>, const DetectFilters&,  \
+    template Filter World<Real, Dim>::filter(BoxId) const;                                                  \
+    template void World<Real, Dim>::set_static(BoxId, bool);                                                \
+    template void World<Real, Dim>::set_static(std::span<const BoxId>, bool);                               \
+    template bool World<Real, Dim>::is_static(BoxId) const;                                                 \
+    template void World<Real, Dim>::set_pair_predicate(PairPredicate);                                      \
+    template DetectStats Detector<Real, Dim>::detect(std::span<const Box<Real, Dim>>, const DetectFilters&, \
+                                                     std::vector<Pair>&);                                   \
+    template DetectStats Detector<Real, Dim>::detect(std::span<const Box<Real, Dim>>, const DetectFilters&, \
                                                      const PairSink&);
 
 SMB_INSTANTIATE(float, 2)
