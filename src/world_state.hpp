@@ -106,12 +106,10 @@ public:
         return stats;
     }
 
-    [[nodiscard]] std::size_t bytes_held() const noexcept { return bytes_held_by_default() + filters_.bytes_held(); }
-    /// What the default detection's parts hold.
-    [[nodiscard]] std::size_t bytes_held_by_default() const noexcept {
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
         // World allocates this state itself, so its own size counts too.
         return sizeof(*this) + store_.bytes_held() + persistent_.bytes_held() + paper_.bytes_held() +
-               chunk_.capacity() * sizeof(Pair);
+               filters_.bytes_held() + chunk_.capacity() * sizeof(Pair);
     }
 
 private:

@@ -56,6 +56,7 @@ public:
     [[nodiscard]] std::size_t retested() const noexcept { return pipeline_.retested(); }
 
     void set_filter(Slot slot, const Filter& filter, std::size_t slot_count) {
+        if (slot >= filters_.size() && filter == Filter{}) return;  // the default already
         grow(slot_count);
         Filter& held = filters_[slot];
         if (held == filter) return;
@@ -66,6 +67,7 @@ public:
     }
 
     void set_static(Slot slot, bool is_static, std::size_t slot_count) {
+        if (slot >= statics_flag_.size() && !is_static) return;  // dynamic already
         grow(slot_count);
         if ((statics_flag_[slot] != 0) == is_static) return;
         statics_flag_[slot] = is_static ? 1 : 0;
