@@ -41,20 +41,30 @@ public:
 
     void clear() { *this = StaticContacts(); }
 
-    /// Every moving box asks the grid again at the next detection (the statics changed).
-    void invalidate_all() {
-        for (Entry& e : entries_) e.valid = false;
+    /// The statics were indexed again: `moving` boxes, each of which asks the grid at the next
+    /// detection. Until then (a world without statics) the calls below keep nothing, so that
+    /// filters alone cost no entry per box.
+    void track(std::size_t moving) {
+        clear();
+        entries_.assign(moving, Entry{});
+        tracking_ = true;
     }
-    void invalidate(std::size_t i) { entries_[i].valid = false; }
+    void invalidate(std::size_t i) {
+        if (tracking_) entries_[i].valid = false;
+    }
     /// A new moving box at the end; it asks the grid at the next detection.
-    void push_back() { entries_.push_back(Entry{}); }
+    void push_back() {
+        if (tracking_) entries_.push_back(Entry{});
+    }
     /// Box `from` (the last) now sits at `to`: a swap-remove of the box at `to`.
     void move_last_to(std::size_t to) {
+        if (!tracking_) return;
         dead_ += entries_[to].room;
         entries_[to] = entries_.back();
         entries_.pop_back();
     }
     void pop_back() {
+        if (!tracking_) return;
         dead_ += entries_.back().room;
         entries_.pop_back();
     }
@@ -168,6 +178,7 @@ private:
     std::vector<Cached> found_;  // one query's statics, before they go to the pool
     std::size_t dead_ = 0;       // pool entries no box points to
     std::size_t refreshed_ = 0;
+    bool tracking_ = false;
 };
 
 }  // namespace smb::detail

@@ -268,7 +268,10 @@ private:
             filters.push_back(filters_[s]);
         }
         grid_.build(std::move(boxes), std::move(ids), std::move(filters));
-        contacts_.invalidate_all();
+        if (grid_.empty())
+            contacts_.clear();
+        else
+            contacts_.track(moving_.size());
         statics_changed_ = false;
     }
 
