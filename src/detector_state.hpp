@@ -4,6 +4,7 @@
 // holding floats or a copy of the doubles (held_cut_pipeline.hpp), and the skin list.
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -32,12 +33,23 @@ public:
     const DetectStats& last_stats() const noexcept { return stats_; }
     HeldPrecision last_precision() const noexcept { return pipeline_.precision(); }
     std::size_t last_retested_pairs() const noexcept { return retested_; }
+    /// A filtered detection reported fewer pairs than it found, maybe over fewer boxes than the
+    /// caller's (filters/filtered_sink.hpp).
+    void set_reported(std::size_t boxes, std::size_t pairs) noexcept {
+        stats_.boxes = boxes;
+        stats_.pairs = pairs;
+    }
+    /// Where a filtered detection gathers the boxes that can pair, and their indices.
+    std::vector<Box<Real, Dim>>& gathered() noexcept { return gathered_; }
+    std::vector<std::uint32_t>& gathered_origin() noexcept { return gathered_origin_; }
 
     void clear() {
         pipeline_.clear();
         skin_.clear();
         skin_pause_ = 0;
         retested_ = 0;
+        std::vector<Box<Real, Dim>>().swap(gathered_);
+        std::vector<std::uint32_t>().swap(gathered_origin_);
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
     }
@@ -71,7 +83,8 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() + chunk_.capacity() * sizeof(Pair);
+        return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() + chunk_.capacity() * sizeof(Pair) +
+               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t);
     }
 
 private:
@@ -107,6 +120,8 @@ private:
     std::size_t retested_ = 0;
     DetectStats stats_;
     std::vector<Pair> chunk_;
+    std::vector<Box<Real, Dim>> gathered_;
+    std::vector<std::uint32_t> gathered_origin_;
 };
 
 }  // namespace smb::detail

@@ -118,17 +118,23 @@ void World<Real, Dim>::remove(std::span<const BoxId> ids) {
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::update(BoxId id, const box_type& box) {
-    state().store().update(std::span(&id, 1), std::span(&box, 1));
+    auto& state = this->state();
+    state.store().update(std::span(&id, 1), std::span(&box, 1));
+    state.filters().note_updated(state.store(), std::span(&id, 1));
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::update(std::span<const BoxId> ids, std::span<const box_type> boxes) {
-    state().store().update(ids, boxes);
+    auto& state = this->state();
+    state.store().update(ids, boxes);
+    state.filters().note_updated(state.store(), ids);
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::assign(std::span<const box_type> boxes) {
-    state().store().assign(boxes);
+    auto& state = this->state();
+    state.filters().note_assign(state.store(), boxes);
+    state.store().assign(boxes);
 }
 
 template <std::floating_point Real, int Dim>

@@ -4,6 +4,8 @@
 // overlapping pairs, chosen by WorldSettings::pipeline: the persistent cuts, holding floats of
 // double boxes where floats resolve the scene (held_cut_pipeline.hpp), or the paper's lists.
 // The pairs are handed to the caller's sink in chunks from here, whichever pipeline found them.
+// Filters and static boxes (filters/world_filters.hpp) take their own path, chosen by one branch
+// per detection, so that a world without them runs the default detection as it is.
 
 #include <algorithm>
 #include <cstddef>
@@ -19,6 +21,7 @@
 #include "core/settings_check.hpp"
 #include "core/stopwatch.hpp"
 #include "cuts/held_cut_pipeline.hpp"
+#include "filters/world_filters.hpp"
 #include "paper/paper_pipeline.hpp"
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
@@ -39,12 +42,16 @@ public:
     const BoxStore<Real, Dim>& store() const noexcept { return store_; }
     const WorldSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
+    WorldFilters<Real, Dim>& filters() noexcept { return filters_; }
+    const WorldFilters<Real, Dim>& filters() const noexcept { return filters_; }
     HeldPrecision last_precision() const noexcept {
+        if (filters_.engaged()) return filters_.precision();
         if (settings_.pipeline == Pipeline::persistent_cuts) return persistent_.precision();
         if (stats_.boxes == 0) return HeldPrecision::none;
         return std::is_same_v<Real, float> ? HeldPrecision::floats : HeldPrecision::doubles;
     }
     std::size_t last_retested_pairs() const noexcept {
+        if (filters_.engaged()) return filters_.retested();
         return settings_.pipeline == Pipeline::persistent_cuts ? persistent_.retested() : 0;
     }
 
@@ -53,12 +60,17 @@ public:
         store_ = BoxStore<Real, Dim>();
         persistent_.clear();
         paper_ = PaperPipeline<Real, Dim>(&store_, &settings_);
+        filters_.clear();
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
         cleared_ = true;
     }
 
     DetectStats detect(const PairSink& sink) {
+        if (filters_.wanted() || filters_.engaged()) [[unlikely]] {
+            if (filters_.wanted()) return detect_filtered(sink);
+            filters_.disengage();  // the default pipelines were reset when it engaged
+        }
         const Stopwatch whole;
         DetectStats stats;
         if (store_.has_removals()) {
@@ -92,9 +104,7 @@ public:
         stats.bytes_held = bytes_held();
         stats.total_seconds = whole.seconds();
         stats_ = stats;
-        // For pair events: what was removed between the detection before and this one.
-        store_.take_removed_log(removed_before_detect_);
-        cleared_before_detect_ = std::exchange(cleared_, false);
+        finish_for_events();
         return stats;
     }
 
@@ -113,15 +123,43 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         // World allocates this state itself, so its own size counts too.
         return sizeof(*this) + store_.bytes_held() + persistent_.bytes_held() + paper_.bytes_held() +
-               chunk_.capacity() * sizeof(Pair) + removed_before_detect_.capacity() * sizeof(BoxId);
+               filters_.bytes_held() + chunk_.capacity() * sizeof(Pair) +
+               removed_before_detect_.capacity() * sizeof(BoxId);
     }
 
 private:
+    /// The detection with filters or statics in use (world_filters.hpp). It compacts the store
+    /// on its own, so the default pipelines forget their lists when it takes over.
+    DetectStats detect_filtered(const PairSink& sink) {
+        const Stopwatch whole;
+        DetectStats stats;
+        if (!filters_.engaged()) {
+            persistent_.clear();
+            paper_ = PaperPipeline<Real, Dim>(&store_, &settings_);
+        }
+        PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
+        filters_.detect(store_, settings_, output, stats);
+        output.flush();
+        stats.bytes_held = bytes_held();
+        stats.total_seconds = whole.seconds();
+        stats_ = stats;
+        finish_for_events();
+        return stats;
+    }
+
+    /// For pair events, after a detection that completed: what was removed, or cleared, between
+    /// the detection before and this one, whichever path detected.
+    void finish_for_events() {
+        store_.take_removed_log(removed_before_detect_);
+        cleared_before_detect_ = std::exchange(cleared_, false);
+    }
+
     WorldSettings settings_;
     BoxStore<Real, Dim> store_;
     DetectStats stats_;
     HeldCutPipeline<Real, Dim> persistent_;
     PaperPipeline<Real, Dim> paper_{&store_, &settings_};
+    WorldFilters<Real, Dim> filters_;
     std::vector<Pair> chunk_;
     std::vector<BoxId> removed_before_detect_;
     bool cleared_ = false;

@@ -10,6 +10,7 @@
 
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
+#include "smb/filter.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
 #include "smb/pair_events.hpp"
@@ -88,6 +89,15 @@ public:
     /// new body put at an old index (PairEvents::replace); appended bodies need nothing.
     /// Whatever it throws, `pairs` and `events` are as they were.
     DetectStats detect(std::span<const box_type> boxes, std::vector<Pair>& pairs, PairEvents& events);
+
+    /// The same detections with filters (smb/filter.hpp): a pair of indices is reported when
+    /// the boxes overlap, their filters pass, they are not both static, and the predicate (if
+    /// any) says yes. Each span of `filters` is empty or holds one entry per box, else
+    /// ArgumentError before anything changes. Boxes whose category or mask is 0 are left out
+    /// of the detection; the other filters, the static flags and the predicate are applied to
+    /// the pairs it finds (a World also keeps its statics out of its detection: docs/filters.md).
+    DetectStats detect(std::span<const box_type> boxes, const DetectFilters& filters, std::vector<Pair>& pairs);
+    DetectStats detect(std::span<const box_type> boxes, const DetectFilters& filters, const PairSink& sink);
 
     /// Forgets the cuts and the order, and releases the memory held; keeps the settings.
     void clear();

@@ -6,6 +6,7 @@
 #include "smb/box_index.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
+#include "smb/filter.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/join.hpp"
 #include "smb/pair.hpp"

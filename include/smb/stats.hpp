@@ -23,7 +23,10 @@ struct DetectStats {
 
     /// Detector with a skin (DetectorSettings::skin): candidate pairs kept after this
     /// detection, boxes that left their fat box (or arrived) and found new candidates, and
-    /// whether the candidates were rebuilt from scratch by the axial cuts.
+    /// whether the candidates were rebuilt from scratch by the axial cuts. World with static
+    /// boxes (docs/filters.md): the static copies its moving boxes hold, the moving boxes that
+    /// left their fat box (or arrived) and asked the statics' grid again, and whether the
+    /// statics were indexed again (they changed).
     std::size_t skin_candidates = 0;
     std::size_t skin_refreshed = 0;
     bool skin_rebuilt = false;

@@ -13,6 +13,7 @@
 #include "smb/box.hpp"
 #include "smb/box_index.hpp"
 #include "smb/errors.hpp"
+#include "smb/filter.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
 #include "smb/pair_events.hpp"
@@ -123,6 +124,30 @@ public:
     /// same events to every detection: the removals are forgotten by any detection. Whatever
     /// it throws, `pairs` and `events` are as they were.
     DetectStats detect(std::vector<Pair>& pairs, PairEvents& events);
+
+    // Filters and static boxes (smb/filter.hpp, docs/filters.md). A box inserted has the
+    // default filter and is not static; removing it forgets both. Once any filter differs
+    // from the default, any box is static or a predicate is set, detect() takes the filtered
+    // path (the persistent cuts, whatever WorldSettings::pipeline says); when none is left,
+    // the next detect() returns to the default one.
+
+    /// Sets the filter of box `id`. Throws UnknownIdError if absent.
+    void set_filter(BoxId id, const Filter& filter);
+    /// Sets many filters at once (all or none); an id named twice gets the last of its filters.
+    void set_filter(std::span<const BoxId> ids, std::span<const Filter> filters);
+    /// The filter of box `id`; throws UnknownIdError if absent.
+    [[nodiscard]] Filter filter(BoxId id) const;
+    /// Makes box `id` static (two static boxes are never paired; a static box that does not
+    /// change costs close to nothing per detection) or dynamic again. A static box may still
+    /// be updated or removed: exact, but the next detection indexes the statics again.
+    void set_static(BoxId id, bool is_static);
+    /// The same for many boxes at once (all or none).
+    void set_static(std::span<const BoxId> ids, bool is_static);
+    /// Whether box `id` is static; throws UnknownIdError if absent.
+    [[nodiscard]] bool is_static(BoxId id) const;
+    /// Sets the predicate consulted for every overlapping pair whose filter bits pass (empty:
+    /// none). The world keeps a copy; it must not call the world.
+    void set_pair_predicate(PairPredicate predicate);
 
     /// Statistics of the last detect() call.
     [[nodiscard]] const DetectStats& last_stats() const noexcept;

@@ -34,6 +34,22 @@ public:
         return above < moved_.size() ? moved_[above] : kNoSlot;
     }
 
+    /// Calls change(old, now) for every slot that was removed (now == kNoSlot) or moved: first
+    /// the removed slots below the moved range, then the moved range in ascending old slots.
+    /// An array indexed by slot can follow the compaction in place in that order (a box only
+    /// moves down, into a slot already visited).
+    template <class Change>
+    void for_each_change(Change&& change) const {
+        for (std::size_t w = 0; w < removed_below_.size(); ++w) {
+            for (std::uint64_t bits = removed_below_[w]; bits != 0; bits &= bits - 1)
+                change(static_cast<Slot>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits))), kNoSlot);
+        }
+        for (std::size_t i = 0; i < moved_.size(); ++i) {
+            const auto old = static_cast<Slot>(kept_ + i);
+            if (moved_[i] != old) change(old, moved_[i]);
+        }
+    }
+
     /// Slots before the compaction.
     [[nodiscard]] std::size_t old_count() const noexcept { return kept_ + moved_.size(); }
 

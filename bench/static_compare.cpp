@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: MIT
+// Static boxes and filters, side by side with the default detection, on the paper's environment
+// (workload/): 3D, density 0.4, size ratio 2.5, Λ = 1e-3, World<double, 3>. Each line times a
+// step (the world's update calls plus detect()), the first step apart from the median of the
+// steady ones. Scenes:
+//   plain        the moving boxes alone, in a World without filters (the default detection)
+//   all-pass     the same, every box given a filter that differs from the default but passes
+//                every pair (category 3): the filtered path's own cost
+//   statics      the same moving boxes plus a second placement of static boxes (its own cube
+//                at the same density, the moving cube in its middle), never updated
+//   layers       twice the moving boxes in one cube, as two layers (categories 1 and 2, each
+//                with the mask of its own) that ignore each other; beside it the same boxes
+//                with no filters, and one layer alone
+// Usage: smb_static_compare [--moving N] [--statics N] [--steps S]
+
+#include <algorithm>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "smb/smb.hpp"
+#include "smb/workload/dynamic_environment.hpp"
+#include "smb/workload/world_sync.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using smb::BoxId;
+using World = smb::World3d;
+using Env = smb::workload::DynamicEnvironment<3>;
+
+double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0 : v[v.size() / 2];
+}
+
+struct Timing {
+    double first = 0;
+    double steady = 0;
+    double steady_update = 0;
+    std::size_t pairs = 0;
+    std::size_t boxes = 0;
+    std::size_t bytes = 0;
+    std::size_t refreshed = 0;  // moving boxes that asked the statics' grid again, all steps
+    std::size_t cached = 0;     // static copies the moving boxes hold, last step
+};
+
+smb::workload::EnvironmentParams params(std::size_t count, std::uint64_t seed) {
+    smb::workload::EnvironmentParams p;
+    p.box_count = count;
+    p.packing_density = 0.4;
+    p.size_ratio = 2.5;
+    p.update_factor = 1e-3;
+    p.seed = seed;
+    return p;
+}
+
+/// Runs `steps` steps of `env` in `world` (which may hold other boxes already); `prepare` is
+/// called after step 0's boxes are in, before the first detection (filters go there).
+template <class Prepare>
+Timing run(Env& env, World& world, int steps, Prepare&& prepare) {
+    Timing t;
+    std::vector<smb::Pair> pairs;
+    auto start = Clock::now();
+    smb::workload::apply_changes(env.changes(), world);
+    prepare(env.changes().inserted_ids);
+    world.detect(pairs);
+    t.first = since(start);
+    pairs.clear();
+    std::vector<double> step_times, update_times;
+    for (int s = 0; s < steps; ++s) {
+        const auto& changes = env.step();
+        start = Clock::now();
+        smb::workload::apply_changes(changes, world);
+        const double updated = since(start);
+        prepare(changes.inserted_ids);
+        pairs.clear();  // a caller with no use for the old pairs: detect() then moves none
+        const smb::DetectStats stats = world.detect(pairs);
+        step_times.push_back(since(start));
+        t.refreshed += stats.skin_refreshed;
+        t.cached = stats.skin_candidates;
+        update_times.push_back(updated);
+    }
+    t.steady = median(step_times);
+    t.steady_update = median(update_times);
+    t.pairs = pairs.size();
+    t.boxes = world.size();
+    t.bytes = world.bytes_held();
+    return t;
+}
+
+void print(const char* scene, const Timing& t) {
+    std::printf("| %-28s | %9zu | %9zu | %9.1f | %9.2f | %9.2f | %7.1f | %9zu | %9zu |\n", scene, t.boxes, t.pairs,
+                t.first * 1e3, t.steady * 1e3, t.steady_update * 1e3, static_cast<double>(t.bytes) / 1048576.0,
+                t.refreshed, t.cached);
+    std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::size_t moving = 100000;
+    std::size_t statics = 1000000;
+    int steps = 10;
+    for (int i = 1; i + 1 < argc; i += 2) {
+        if (std::strcmp(argv[i], "--moving") == 0) moving = std::strtoull(argv[i + 1], nullptr, 10);
+        if (std::strcmp(argv[i], "--statics") == 0) statics = std::strtoull(argv[i + 1], nullptr, 10);
+        if (std::strcmp(argv[i], "--steps") == 0) steps = std::atoi(argv[i + 1]);
+    }
+    auto nothing = [](std::span<const BoxId>) {};
+    std::printf("moving %zu, statics %zu, steps %d (World<double, 3>; times in ms; first = load + detect)\n\n", moving,
+                statics, steps);
+    std::printf("| %-28s | %9s | %9s | %9s | %9s | %9s | %7s | %9s | %9s |\n", "scene", "boxes", "pairs", "first",
+                "step", "update", "MiB", "refreshed", "cached");
+    std::printf("|---|---|---|---|---|---|---|---|---|\n");
+
+    // The moving boxes alone: the default detection, and the filtered path with filters that
+    // pass everything.
+    {
+        Env env(params(moving, 1));
+        World world;
+        print("plain (default detection)", run(env, world, steps, nothing));
+    }
+    {
+        Env env(params(moving, 1));
+        World world;
+        auto all_pass = [&](std::span<const BoxId> ids) {
+            world.set_filter(ids, std::vector<smb::Filter>(ids.size(), smb::Filter{3, ~0u}));
+        };
+        print("all-pass filters", run(env, world, steps, all_pass));
+    }
+
+    // The same moving boxes in the middle of a second, static placement.
+    {
+        Env env(params(moving, 1));
+        const Env placement(params(statics, 2));
+        const double offset = 0.5 * (placement.cube_side() - env.cube_side());
+        std::vector<smb::Box3d> boxes(placement.boxes().begin(), placement.boxes().end());
+        for (smb::Box3d& b : boxes) {
+            for (int k = 0; k < 3; ++k) {
+                b.min[k] -= offset;
+                b.max[k] -= offset;
+            }
+        }
+        std::vector<BoxId> ids(boxes.size());
+        for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = (BoxId{1} << 40) + i;
+        World world;
+        const auto start = Clock::now();
+        world.insert(ids, boxes);
+        world.set_static(ids, true);
+        std::printf("| %-28s | %9zu | %9s | %9.1f | %9s | %9s | %7s | %9s | %9s |\n", "(statics inserted)", ids.size(),
+                    "", since(start) * 1e3, "", "", "", "", "");
+        print("moving + statics", run(env, world, steps, nothing));
+    }
+
+    // Two layers that ignore each other, against the same boxes unfiltered and one layer alone.
+    {
+        Env env(params(2 * moving, 3));
+        World world;
+        print("two layers, no filters", run(env, world, steps, nothing));
+    }
+    {
+        Env env(params(2 * moving, 3));
+        World world;
+        auto layers = [&](std::span<const BoxId> ids) {
+            std::vector<smb::Filter> filters(ids.size());
+            for (std::size_t i = 0; i < ids.size(); ++i)
+                filters[i] = ids[i] % 2 == 0 ? smb::Filter{1, 1} : smb::Filter{2, 2};
+            world.set_filter(ids, filters);
+        };
+        print("two layers, filtered", run(env, world, steps, layers));
+    }
+    {
+        // One layer alone: the other layer's boxes pair with nothing (mask 0).
+        Env env(params(2 * moving, 3));
+        World world;
+        auto one_layer = [&](std::span<const BoxId> ids) {
+            std::vector<smb::Filter> filters(ids.size());
+            for (std::size_t i = 0; i < ids.size(); ++i)
+                filters[i] = ids[i] % 2 == 0 ? smb::Filter{1, 1} : smb::Filter{2, 0};
+            world.set_filter(ids, filters);
+        };
+        print("one layer + one of mask 0", run(env, world, steps, one_layer));
+    }
+    return 0;
+}

@@ -1,0 +1,320 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A World's filters and static boxes, and the detection it runs once any is in use (the
+// default detection in world_state.hpp stays as it is, one branch away). Per slot of the store:
+// the filter words, the static flag and the position in the list of moving boxes. The moving
+// boxes that can pair with something (not static, category and mask not 0) are gathered, in the
+// order of that list, into one array and detected with their own persistent-cut pipeline, as a
+// Detector detects an array; their pairs are filtered by index (filtered_report.hpp). The
+// statics stay out of it: each moving box meets them through its cache (static_contacts.hpp)
+// over a grid of the statics (static_grid.hpp), built again only when the statics change.
+//
+// The list of moving boxes keeps each box at its position from one detection to the next (a box
+// that leaves it is swap-removed, a box that joins it is appended), so the pipeline sees the
+// same box at the same index and keeps its speed; a position that changes box costs speed there,
+// never exactness.
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/box_store.hpp"
+#include "core/pair_output.hpp"
+#include "core/scene_bounds.hpp"
+#include "core/slot_renumbering.hpp"
+#include "core/stopwatch.hpp"
+#include "cuts/held_cut_pipeline.hpp"
+#include "filters/filtered_report.hpp"
+#include "filters/static_contacts.hpp"
+#include "filters/static_grid.hpp"
+#include "smb/filter.hpp"
+#include "smb/settings.hpp"
+#include "smb/stats.hpp"
+
+namespace smb::detail {
+
+template <std::floating_point Real, int Dim>
+class WorldFilters {
+public:
+    using box_type = Box<Real, Dim>;
+
+    /// Whether the next detection needs this path: a filter other than the default, a static
+    /// box or a predicate.
+    [[nodiscard]] bool wanted() const noexcept { return statics_ != 0 || non_default_ != 0 || predicate_; }
+    /// Whether the last detection ran this path.
+    [[nodiscard]] bool engaged() const noexcept { return engaged_; }
+
+    [[nodiscard]] Filter filter_at(Slot slot) const noexcept {
+        return slot < filters_.size() ? filters_[slot] : Filter{};
+    }
+    [[nodiscard]] bool static_at(Slot slot) const noexcept {
+        return slot < statics_flag_.size() && statics_flag_[slot];
+    }
+    [[nodiscard]] HeldPrecision precision() const noexcept { return pipeline_.precision(); }
+    [[nodiscard]] std::size_t retested() const noexcept { return pipeline_.retested(); }
+
+    void set_filter(Slot slot, const Filter& filter, std::size_t slot_count) {
+        if (slot >= filters_.size() && filter == Filter{}) return;  // the default already
+        grow(slot_count);
+        Filter& held = filters_[slot];
+        if (held == filter) return;
+        non_default_ += (filter != Filter{} ? 1 : 0) - (held != Filter{} ? 1 : 0);
+        held = filter;
+        if (statics_flag_[slot]) statics_changed_ = true;
+        pending_.push_back(slot);
+    }
+
+    void set_static(Slot slot, bool is_static, std::size_t slot_count) {
+        if (slot >= statics_flag_.size() && !is_static) return;  // dynamic already
+        grow(slot_count);
+        if ((statics_flag_[slot] != 0) == is_static) return;
+        statics_flag_[slot] = is_static ? 1 : 0;
+        statics_ = is_static ? statics_ + 1 : statics_ - 1;
+        statics_changed_ = true;
+        pending_.push_back(slot);
+    }
+
+    void set_predicate(PairPredicate predicate) { predicate_ = std::move(predicate); }
+
+    /// After BoxStore::update(): a static that moved makes the grid and the caches stale.
+    void note_updated(const BoxStore<Real, Dim>& store, std::span<const BoxId> ids) {
+        if (statics_ == 0 || statics_changed_) return;
+        for (const BoxId id : ids) {
+            if (static_at(store.slot_of(id))) {
+                statics_changed_ = true;
+                return;
+            }
+        }
+    }
+
+    /// Before BoxStore::assign(boxes): a static whose box changes makes the grid stale. Statics
+    /// that assign() removes are found by the next compaction.
+    void note_assign(const BoxStore<Real, Dim>& store, std::span<const box_type> boxes) {
+        if (statics_ == 0 || statics_changed_) return;
+        const std::size_t n = std::min(statics_flag_.size(), store.slot_count());
+        for (std::size_t s = 0; s < n; ++s) {
+            if (statics_flag_[s] == 0 || !store.alive(static_cast<Slot>(s))) continue;
+            const BoxId id = store.id_at(static_cast<Slot>(s));
+            if (id < boxes.size() && !(boxes[id] == store.box_at(static_cast<Slot>(s)))) {
+                statics_changed_ = true;
+                return;
+            }
+        }
+    }
+
+    /// Gives back everything the filtered detection held; the filters, statics and predicate
+    /// are kept (a detection that finds none in use calls it and runs the default path).
+    void disengage() {
+        pipeline_.clear();
+        grid_.clear();
+        contacts_.clear();
+        std::vector<Slot>().swap(moving_);
+        std::vector<Slot>().swap(position_);
+        std::vector<box_type>().swap(gathered_);
+        std::vector<BoxId>().swap(gathered_keys_);
+        std::vector<IdFilter>().swap(gathered_info_);
+        known_ = 0;
+        engaged_ = false;
+        statics_changed_ = true;
+        if (!wanted()) {
+            std::vector<Filter>().swap(filters_);
+            std::vector<std::uint8_t>().swap(statics_flag_);
+            std::vector<Slot>().swap(pending_);
+        }
+    }
+
+    void clear() { *this = WorldFilters(); }
+
+    /// The filtered detection: compacts the store (the caller's pipelines were told to forget
+    /// it when this path engaged), then reports every pair that passes.
+    void detect(BoxStore<Real, Dim>& store, const DetectionSettings& settings, PairOutput& output, DetectStats& stats) {
+        const Stopwatch update;
+        if (!engaged_) {
+            engaged_ = true;
+            known_ = 0;  // every slot is new to this path
+            statics_changed_ = true;
+        }
+        grow(store.slot_count());
+        for (std::size_t s = known_; s < store.slot_count(); ++s) pending_.push_back(static_cast<Slot>(s));
+        for (const Slot s : pending_) refresh_moving(s, store.alive(s));
+        pending_.clear();
+        if (store.has_removals()) {
+            const SlotRenumbering renumbering = store.compact(known_);
+            follow_compaction(renumbering, store.slot_count());
+        }
+        known_ = store.slot_count();
+        grow(known_);
+        const bool statics_rebuilt = statics_changed_;
+        if (statics_changed_) rebuild_statics(store);
+        gather(store);
+        stats.update_seconds = update.seconds();
+        stats.boxes = store.slot_count();
+
+        const PairPredicate* predicate = predicate_ ? &predicate_ : nullptr;
+        if (gathered_.empty()) {
+            pipeline_.detect_nothing(settings, output, stats);
+        } else {
+            const Stopwatch scan;
+            const std::span<const box_type> boxes(gathered_);
+            SceneBounds<Real, Dim> bounds;
+            if constexpr (HeldCutPipeline<Real, Dim>::kMayRound) bounds = checked_bounds(boxes);
+            pipeline_.judge(boxes, bounds);
+            pipeline_.forget_slots_from(boxes.size());
+            stats.scan_seconds = scan.seconds();
+            if (packed_) {
+                PackedFilterReport<PairOutput> report(output, predicate);
+                pipeline_.detect(boxes, gathered_keys_, bounds, settings, report, stats);
+            } else {
+                FilteredReport<PairOutput> report(output, gathered_info_, predicate);
+                pipeline_.detect(boxes, {}, bounds, settings, report, stats);
+            }
+        }
+        stats.skin_rebuilt = statics_rebuilt;
+        contacts_.detect(gathered_, gathered_info_, grid_, predicate, output);
+        stats.skin_refreshed = contacts_.refreshed();
+        stats.skin_candidates = contacts_.cached();
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        return filters_.capacity() * sizeof(Filter) + statics_flag_.capacity() +
+               (pending_.capacity() + moving_.capacity() + position_.capacity()) * sizeof(Slot) +
+               gathered_.capacity() * sizeof(box_type) + gathered_keys_.capacity() * sizeof(BoxId) +
+               gathered_info_.capacity() * sizeof(IdFilter) + pipeline_.bytes_held() + grid_.bytes_held() +
+               contacts_.bytes_held();
+    }
+
+private:
+    static constexpr Slot kNowhere = kNoSlot;
+
+    void grow(std::size_t slot_count) {
+        if (filters_.size() < slot_count) filters_.resize(slot_count);
+        if (statics_flag_.size() < slot_count) statics_flag_.resize(slot_count, 0);
+        if (position_.size() < slot_count) position_.resize(slot_count, kNowhere);
+    }
+
+    [[nodiscard]] bool moves(Slot s) const noexcept { return statics_flag_[s] == 0 && filter_interacts(filters_[s]); }
+
+    /// Puts slot s in the list of moving boxes or takes it out, as its flags say now; a box that
+    /// stays asks the grid again (its filter may have changed).
+    void refresh_moving(Slot s, bool alive) {
+        const bool in = position_[s] != kNowhere;
+        const bool wanted = alive && moves(s);
+        if (wanted && !in) {
+            position_[s] = static_cast<Slot>(moving_.size());
+            moving_.push_back(s);
+            contacts_.push_back();
+        } else if (!wanted && in) {
+            remove_position(position_[s]);
+        } else if (wanted) {
+            contacts_.invalidate(position_[s]);
+        }
+    }
+
+    /// Swap-removes position p of the list. `forget_slot` false: its slot was removed from the
+    /// store, and its number may already be another box's.
+    void remove_position(Slot p, bool forget_slot = true) {
+        if (forget_slot) position_[moving_[p]] = kNowhere;
+        const Slot last = moving_.back();
+        if (p + 1 != moving_.size()) {
+            moving_[p] = last;
+            position_[last] = p;
+            contacts_.move_last_to(p);
+        } else {
+            contacts_.pop_back();
+        }
+        moving_.pop_back();
+    }
+
+    /// Renumbers the per-slot arrays and the list of moving boxes as the store compacted to
+    /// `slot_count` slots.
+    void follow_compaction(const SlotRenumbering& renumbering, std::size_t slot_count) {
+        std::vector<Slot> gone;  // positions of removed moving boxes
+        renumbering.for_each_change([&](Slot old, Slot now) {
+            if (now == kNoSlot) {
+                if (statics_flag_[old] != 0) {
+                    --statics_;
+                    statics_changed_ = true;
+                }
+                if (filters_[old] != Filter{}) --non_default_;
+                if (position_[old] != kNowhere) gone.push_back(position_[old]);
+                return;
+            }
+            filters_[now] = filters_[old];
+            statics_flag_[now] = statics_flag_[old];
+            position_[now] = position_[old];
+            if (position_[now] != kNowhere) moving_[position_[now]] = now;
+        });
+        // From the highest position down, so that the last one is never a removed box.
+        std::sort(gone.begin(), gone.end(), std::greater<>());
+        for (const Slot p : gone) remove_position(p, false);
+        filters_.resize(slot_count);
+        statics_flag_.resize(slot_count);
+        position_.resize(slot_count);
+    }
+
+    void rebuild_statics(const BoxStore<Real, Dim>& store) {
+        std::vector<box_type> boxes;
+        std::vector<BoxId> ids;
+        std::vector<Filter> filters;
+        boxes.reserve(statics_);
+        ids.reserve(statics_);
+        filters.reserve(statics_);
+        for (std::size_t s = 0; s < store.slot_count(); ++s) {
+            if (statics_flag_[s] == 0 || !filter_interacts(filters_[s])) continue;
+            boxes.push_back(store.box_at(static_cast<Slot>(s)));
+            ids.push_back(store.id_at(static_cast<Slot>(s)));
+            filters.push_back(filters_[s]);
+        }
+        grid_.build(std::move(boxes), std::move(ids), std::move(filters));
+        if (grid_.empty())
+            contacts_.clear();
+        else
+            contacts_.track(moving_.size());
+        statics_changed_ = false;
+    }
+
+    void gather(const BoxStore<Real, Dim>& store) {
+        gathered_.resize(moving_.size());
+        gathered_info_.resize(moving_.size());
+        packed_ = true;
+        for (std::size_t i = 0; i < moving_.size(); ++i) {
+            const Slot s = moving_[i];
+            gathered_[i] = store.box_at(s);
+            gathered_info_[i] = IdFilter{store.id_at(s), filters_[s]};
+            packed_ = packed_ && packable(gathered_info_[i].id, filters_[s]);
+        }
+        if (!packed_) {
+            std::vector<BoxId>().swap(gathered_keys_);
+            return;
+        }
+        gathered_keys_.resize(moving_.size());
+        for (std::size_t i = 0; i < moving_.size(); ++i)
+            gathered_keys_[i] = packed_key(gathered_info_[i].id, gathered_info_[i].filter);
+    }
+
+    // Per slot of the store (grown to its slot count on demand; a missing entry is the default).
+    std::vector<Filter> filters_;
+    std::vector<std::uint8_t> statics_flag_;
+    std::vector<Slot> position_;   // in moving_, or kNowhere
+    std::size_t statics_ = 0;      // slots flagged static
+    std::size_t non_default_ = 0;  // slots whose filter is not the default
+    PairPredicate predicate_;
+
+    std::vector<Slot> pending_;  // slots whose flags changed since the last detection
+    std::vector<Slot> moving_;   // the slots of the moving boxes, in the pipeline's index order
+    std::size_t known_ = 0;      // slots this path saw at its last detection
+    bool engaged_ = false;
+    bool statics_changed_ = true;
+
+    std::vector<box_type> gathered_;
+    std::vector<IdFilter> gathered_info_;  // index i's id and filter
+    std::vector<BoxId> gathered_keys_;     // index i's key for the pipeline, when packed_
+    bool packed_ = false;
+    HeldCutPipeline<Real, Dim> pipeline_;
+    StaticGrid<Real, Dim> grid_;
+    StaticContacts<Real, Dim> contacts_;
+};
+
+}  // namespace smb::detail
