@@ -5,10 +5,12 @@
 //
 // The input is decoded into a world type (2D/3D, float/double), settings (cell population,
 // chunk size, pair limit) and then a list of operations: insert (one or many), remove (one or
-// many), update (one or many), assign, detect (into a vector or a sink) and clear. Coordinates
+// many), update (one or many), assign, detect (into a vector or a sink), clear, and collision
+// filters and static flags (one or many). Coordinates
 // come from a table of hostile values (denormals, the largest finite values, infinities, NaN,
 // -0.0, ...), from a small integer grid (so that boxes touch and share coordinates), or raw
-// bytes. The model is a std::map from id to box; it predicts which calls must be rejected.
+// bytes. The model is a std::map from id to box, with each id's filter and static flag; it
+// predicts which calls must be rejected and which pairs the filters let through.
 // After every detection the pairs must equal brute force over the model; after every rejected
 // call the world must be unchanged (size, every box, and the next detection).
 
@@ -26,6 +28,7 @@
 #include <vector>
 
 #include "smb/errors.hpp"
+#include "smb/filter.hpp"
 #include "smb/world.hpp"
 
 namespace smb::fuzz {
@@ -180,7 +183,7 @@ public:
 
 private:
     void step(ByteReader& in) {
-        switch (in.byte() % 10) {
+        switch (in.byte() % 11) {
             case 0:
             case 1:
                 insert_one(in);
@@ -210,9 +213,78 @@ private:
                 if (in.byte() % 8 == 0) {
                     world_.clear();
                     model_.clear();
+                    filters_.clear();
+                    statics_.clear();
                 }
                 break;
+            case 10:
+                filter_or_static(in);
+                break;
         }
+    }
+
+    /// A few bits, so that categories and masks meet and miss; sometimes every bit.
+    static std::uint32_t decode_bits(ByteReader& in) {
+        const std::uint8_t value = in.byte();
+        return value >= 240 ? ~std::uint32_t{0} : value % 4;
+    }
+
+    void filter_or_static(ByteReader& in) {
+        const std::uint8_t what = in.byte() % 4;
+        if (what == 0) {
+            const smb::BoxId id = pick_id(in);
+            const smb::Filter filter{decode_bits(in), decode_bits(in)};
+            const unsigned expected = model_.count(id) != 0 ? kNone : kUnknownId;
+            attempt(expected, [&] { world_.set_filter(id, filter); });
+            if (expected == kNone) filters_[id] = filter;
+        } else if (what == 1) {
+            const std::size_t count = in.byte() % 5;
+            std::vector<smb::BoxId> ids;
+            std::vector<smb::Filter> filters;
+            unsigned expected = kNone;
+            for (std::size_t i = 0; i < count; ++i) {
+                ids.push_back(pick_id(in));
+                filters.push_back(smb::Filter{decode_bits(in), decode_bits(in)});
+                if (model_.count(ids.back()) == 0) expected |= kUnknownId;
+            }
+            if (in.byte() % 16 == 0) {
+                filters.push_back(smb::Filter{});
+                expected |= kArgument;
+            }
+            attempt(expected, [&] { world_.set_filter(ids, filters); });
+            if (expected == kNone)
+                for (std::size_t i = 0; i < count; ++i) filters_[ids[i]] = filters[i];
+        } else {
+            const smb::BoxId id = pick_id(in);
+            const bool make_static = what == 2;
+            const unsigned expected = model_.count(id) != 0 ? kNone : kUnknownId;
+            attempt(expected, [&] { world_.set_static(id, make_static); });
+            if (expected == kNone) {
+                if (make_static)
+                    statics_.insert(id);
+                else
+                    statics_.erase(id);
+            }
+        }
+    }
+
+    /// A box removed forgets its filter and static flag.
+    void forget(smb::BoxId id) {
+        model_.erase(id);
+        filters_.erase(id);
+        statics_.erase(id);
+    }
+
+    [[nodiscard]] smb::Filter filter_of(smb::BoxId id) const {
+        const auto it = filters_.find(id);
+        return it == filters_.end() ? smb::Filter{} : it->second;
+    }
+
+    [[nodiscard]] bool paired(smb::BoxId a, smb::BoxId b) const {
+        if (statics_.count(a) != 0 && statics_.count(b) != 0) return false;
+        const smb::Filter fa = filter_of(a);
+        const smb::Filter fb = filter_of(b);
+        return (fa.category & fb.mask) != 0 && (fb.category & fa.mask) != 0;
     }
 
     void insert_one(ByteReader& in) {
@@ -252,7 +324,7 @@ private:
         const smb::BoxId id = pick_id(in);
         const unsigned expected = model_.count(id) != 0 ? kNone : kUnknownId;
         attempt(expected, [&] { world_.remove(id); });
-        if (expected == kNone) model_.erase(id);
+        if (expected == kNone) forget(id);
     }
 
     void remove_many(ByteReader& in) {
@@ -267,7 +339,7 @@ private:
         }
         attempt(expected, [&] { world_.remove(ids); });
         if (expected == kNone)
-            for (const smb::BoxId id : ids) model_.erase(id);
+            for (const smb::BoxId id : ids) forget(id);
     }
 
     void update_one(ByteReader& in) {
@@ -320,7 +392,11 @@ private:
         }
         attempt(expected, [&] { world_.assign(boxes); });
         if (expected == kNone) {
-            model_.clear();
+            // Ids beyond the array are removed; the others keep their filters and flags.
+            std::vector<smb::BoxId> gone;
+            for (const auto& [id, box] : model_)
+                if (id >= count) gone.push_back(id);
+            for (const smb::BoxId id : gone) forget(id);
             for (std::size_t i = 0; i < count; ++i) model_[i] = boxes[i];
         }
     }
@@ -380,6 +456,12 @@ private:
             if (!world_.contains(id)) broken_promise("a rejected call lost a box");
             const BoxT held = world_.box(id);
             if (!(held == box)) broken_promise("a rejected call changed a box");
+            const smb::Filter filter = world_.filter(id);
+            const smb::Filter expected = filter_of(id);
+            if (filter.category != expected.category || filter.mask != expected.mask)
+                broken_promise("a rejected call changed a filter");
+            if (world_.is_static(id) != (statics_.count(id) != 0))
+                broken_promise("a rejected call changed a static flag");
         }
     }
 
@@ -387,7 +469,8 @@ private:
         std::vector<smb::Pair> expected;
         for (auto a = model_.begin(); a != model_.end(); ++a)
             for (auto b = std::next(a); b != model_.end(); ++b)
-                if (smb::overlaps(a->second, b->second)) expected.push_back({a->first, b->first});
+                if (smb::overlaps(a->second, b->second) && paired(a->first, b->first))
+                    expected.push_back({a->first, b->first});
 
         check_detection(expected, world_.settings(), through_sink,
                         [&](auto& pairs_or_sink) { world_.detect(pairs_or_sink); });
@@ -395,6 +478,8 @@ private:
 
     World world_;
     Model model_;
+    std::map<smb::BoxId, smb::Filter> filters_;
+    std::set<smb::BoxId> statics_;
 };
 
 /// Decodes what every operations input starts with — the type (2D/3D, float/double) and the
