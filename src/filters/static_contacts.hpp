@@ -116,9 +116,10 @@ private:
     /// overlaps() without a branch per axis: about half the cached statics overlap, so the
     /// branches of a short-circuit test would be mispredicted half the time.
     static bool overlap_test(const box_type& a, const box_type& b) noexcept {
-        bool result = true;
-        for (int k = 0; k < Dim; ++k) result &= (a.min[k] <= b.max[k]) & (b.min[k] <= a.max[k]);
-        return result;
+        int result = 1;
+        for (int k = 0; k < Dim; ++k)
+            result &= static_cast<int>(a.min[k] <= b.max[k]) & static_cast<int>(b.min[k] <= a.max[k]);
+        return result != 0;
     }
 
     static bool inside(const box_type& box, const box_type& fat) noexcept {
