@@ -22,12 +22,12 @@ public:
     BoxId add(JoinSide side, BoxId id) {
         BoxId internal = 0;
         if (free_.empty()) {
-            internal = static_cast<BoxId>(owners_.size());
-            owners_.push_back({side, id});
+            internal = static_cast<BoxId>(side_ids_.size());
+            side_ids_.push_back({side, id});
         } else {
             internal = free_.back();
             free_.pop_back();
-            owners_[internal] = {side, id};
+            side_ids_[internal] = {side, id};
         }
         map(side)[id] = internal;
         return internal;
@@ -46,19 +46,19 @@ public:
         return internal;
     }
 
-    [[nodiscard]] JoinSide side(BoxId internal) const { return owners_[internal].side; }
+    [[nodiscard]] JoinSide side(BoxId internal) const { return side_ids_[internal].side; }
     /// The scene's own id behind `internal`.
-    [[nodiscard]] BoxId id(BoxId internal) const { return owners_[internal].id; }
+    [[nodiscard]] BoxId id(BoxId internal) const { return side_ids_[internal].id; }
 
     void clear() {
         maps_[0].clear();
         maps_[1].clear();
-        owners_.clear();
+        side_ids_.clear();
         free_.clear();
     }
 
 private:
-    struct Owner {
+    struct SideId {
         JoinSide side;
         BoxId id;
     };
@@ -69,7 +69,7 @@ private:
     }
 
     std::array<std::unordered_map<BoxId, BoxId>, 2> maps_;
-    std::vector<Owner> owners_;
+    std::vector<SideId> side_ids_;
     std::vector<BoxId> free_;
 };
 
