@@ -143,8 +143,8 @@ void world_events_against_brute_force(bool statics) {
         EXPECT_EQ(events.size(), expected.size());
         before = now;
     }
-    EXPECT_GT(counts.begun, 1000U);
-    EXPECT_GT(counts.ended, 500U);
+    EXPECT_GT(counts.begun, scaled(400));
+    EXPECT_GT(counts.ended, scaled(400));
 }
 
 TYPED_TEST(WorldPairEventsTest, ManyStepsAgainstBruteForce) { world_events_against_brute_force<TypeParam>(false); }
@@ -229,8 +229,8 @@ void detector_swap_removes(std::uint64_t seed) {
         expect_events(events, before, now, step, counts);
         before = now;
     }
-    EXPECT_GT(counts.begun, 1000U);
-    EXPECT_GT(counts.ended, 500U);
+    EXPECT_GT(counts.begun, scaled(400));
+    EXPECT_GT(counts.ended, scaled(400));
 }
 
 TEST(DetectorPairEvents, SwapRemovesAgainstBruteForce2f) { detector_swap_removes<float, 2>(7101); }
