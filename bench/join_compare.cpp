@@ -36,6 +36,8 @@
 
 #if defined(SMB_BENCH_HAVE_CGAL)
 #include <CGAL/box_intersection_d.h>
+
+#include "peers/cgal_box.hpp"
 #endif
 
 namespace smb::bench {
@@ -148,23 +150,6 @@ Outcome run_smb_union(const Boxes<Dim>& first, const Boxes<Dim>& second) {
 }
 
 #if defined(SMB_BENCH_HAVE_CGAL)
-// As bench/peers/cgal_box_intersection_peer.cpp: float boxes, ids unique over both sequences
-// (CGAL breaks ties between equal coordinates by id).
-template <int Dim>
-struct CgalBox {
-    using NT = float;
-    using ID = std::size_t;
-
-    std::array<float, Dim> low{};
-    std::array<float, Dim> high{};
-    std::size_t index = 0;
-
-    static int dimension() { return Dim; }
-    [[nodiscard]] float min_coord(int axis) const { return low[static_cast<std::size_t>(axis)]; }
-    [[nodiscard]] float max_coord(int axis) const { return high[static_cast<std::size_t>(axis)]; }
-    [[nodiscard]] std::size_t id() const { return index; }
-};
-
 /// CGAL's time covers the copy into its box type and the calls; its pairs come unsorted, and
 /// sorting them is timed apart (`sort_seconds`), since smb's result is sorted.
 template <int Dim>

@@ -3,27 +3,11 @@
 
 #include <cstdint>
 
+#include "peers/cgal_box.hpp"
 #include "peers/peer_factories.hpp"
 
 namespace smb::bench {
 namespace {
-
-// CGAL breaks ties between equal coordinates by box id, so the id must be unique per box:
-// the box's position in the step is.
-template <int Dim>
-struct CgalBox {
-    using NT = float;
-    using ID = std::size_t;
-
-    std::array<float, Dim> low{};
-    std::array<float, Dim> high{};
-    std::size_t index = 0;
-
-    static int dimension() { return Dim; }
-    [[nodiscard]] float min_coord(int axis) const { return low[static_cast<std::size_t>(axis)]; }
-    [[nodiscard]] float max_coord(int axis) const { return high[static_cast<std::size_t>(axis)]; }
-    [[nodiscard]] std::size_t id() const { return index; }
-};
 
 template <int Dim>
 class CgalBoxIntersectionPeer final : public StatelessPeer<Dim> {
