@@ -365,5 +365,47 @@ TEST(WorldFilters, StaticsNeverPairAndUnmovedStaticsAreNotIndexedAgain) {
     EXPECT_TRUE(pairs.empty());
 }
 
+TEST(WorldFilters, FlagsChangedBeforeTheDefaultPathCompactsNameNoStaleSlot) {
+    // Box 0 turns static and dynamic again while box 50, before it in the store, is removed; a
+    // default detection compacts the store; a filter then engages the filtered path, which must
+    // not revisit the slot numbers noted before the compaction.
+    World2d world;
+    world.insert(50, Box2d{{0, -2}, {0, -2}});
+    world.insert(0, Box2d{{-2, -2}, {-2, -2}});
+    world.set_static(0, true);
+    world.remove(50);
+    world.set_static(0, false);
+    std::vector<Pair> pairs;
+    world.detect(pairs);
+    EXPECT_TRUE(pairs.empty());
+    world.set_filter(0, Filter{1, 3});
+    world.detect(pairs);
+    EXPECT_TRUE(pairs.empty());
+    world.insert(7, Box2d{{-3, -3}, {-1, -1}});
+    world.detect(pairs);
+    EXPECT_EQ(pairs, (std::vector<Pair>{{0, 7}}));
+    world.set_filter(7, Filter{2, 2});
+    world.detect(pairs);
+    EXPECT_TRUE(pairs.empty());
+}
+
+TEST(WorldFilters, StaticsSpanningAlmostAllOfDoubleStillPair) {
+    // The statics' extent overflows a double: the grid must fall back to one cell on that axis.
+    World3d world;
+    const double huge = 1.5e308;
+    world.insert(1, Box3d{{-huge, 0, 0}, {-huge / 2, 1, 1}});
+    world.insert(2, Box3d{{huge / 2, 0, 0}, {huge, 1, 1}});
+    world.insert(3, Box3d{{-1, -1, -1}, {1, 1, 1}});
+    const std::vector<BoxId> statics = {1, 2, 3};
+    world.set_static(statics, true);
+    world.insert(10, Box3d{{-huge, 0.5, 0.5}, {-huge, 0.5, 0.5}});
+    world.insert(11, Box3d{{huge, 0, 0}, {huge, 0, 0}});
+    world.insert(12, Box3d{{0, 0, 0}, {0, 0, 0}});
+    std::vector<Pair> pairs;
+    world.detect(pairs);
+    sort_pairs(pairs);
+    EXPECT_EQ(pairs, (std::vector<Pair>{{1, 10}, {2, 11}, {3, 12}}));
+}
+
 }  // namespace
 }  // namespace smb::test

@@ -157,7 +157,9 @@ private:
             const double range = hi[k] - lo[k];
             double c = mean[k] > 0 ? std::floor(range / (2 * mean[k])) : per_axis_cap;
             c = std::clamp(c, 1.0, per_axis_cap);
-            if (!(range > 0)) c = 1;
+            // A flat extent, or one that overflows (boxes near the ends of double's range, where
+            // the quotient above is NaN), puts every static in one cell on that axis.
+            if (!(range > 0) || !std::isfinite(range) || !std::isfinite(c)) c = 1;
             count[k] = c;
             total *= c;
         }
@@ -172,8 +174,9 @@ private:
             cell_count_ *= cells_[k];
             origin_[k] = lo[k];
             const double range = hi[k] - lo[k];
-            inverse_side_[k] = range > 0 ? count[k] / range : 0;
-            if (range > 0) smallest_side_ = std::min(smallest_side_, range / count[k]);
+            const bool spread = range > 0 && std::isfinite(range);
+            inverse_side_[k] = spread ? count[k] / range : 0;
+            if (spread) smallest_side_ = std::min(smallest_side_, range / count[k]);
         }
         if (!std::isfinite(smallest_side_)) smallest_side_ = 0;
     }

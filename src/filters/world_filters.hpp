@@ -135,6 +135,9 @@ public:
             engaged_ = true;
             known_ = 0;  // every slot is new to this path
             statics_changed_ = true;
+            // Slots noted before the default path last compacted the store may name other boxes,
+            // or none; every slot is visited below anyway.
+            pending_.clear();
         }
         grow(store.slot_count());
         for (std::size_t s = known_; s < store.slot_count(); ++s) pending_.push_back(static_cast<Slot>(s));
