@@ -35,6 +35,7 @@ if ! command -v "$compiler" >/dev/null; then
 fi
 
 cmake -S . -B "$build_dir" -DCMAKE_CXX_COMPILER="$compiler" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
   -DSMB_SANITIZE=ON -DSMB_BUILD_FUZZERS=ON -DSMB_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$build_dir" --parallel "$jobs" --target "fuzz_$target"
 
@@ -52,9 +53,12 @@ fi
 
 # SMB_FUZZ_RUNS=N makes the run reproducible: exactly N inputs from seed 1 (the time is then
 # only a cap). CI uses it, so that what passed here passes there.
+# The corpus a run grows is emptied first, so that a run here starts where a clean clone does.
 repeatable=()
 if [[ -n ${SMB_FUZZ_RUNS:-} ]]; then
   repeatable=(-runs="$SMB_FUZZ_RUNS" -seed=1)
+  rm -rf "$work_dir"
+  mkdir -p "$work_dir"
 fi
 
 echo "== fuzz_$target for ${seconds}s${SMB_FUZZ_RUNS:+ or $SMB_FUZZ_RUNS runs} =="

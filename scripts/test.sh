@@ -29,7 +29,8 @@ cmake --build "$release_dir" --parallel "$jobs"
 ctest --test-dir "$release_dir" --output-on-failure -j"$jobs"
 
 echo "== Sanitizer build (ASan + UBSan) =="
-cmake -S . -B "$asan_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+# Line tables only (-g1): the sanitizers' reports name file and line, and the build is faster.
+cmake -S . -B "$asan_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
   -DSMB_SANITIZE=ON -DSMB_WARNINGS_AS_ERRORS=ON -DSMB_VALIDATE=ON -DSMB_BUILD_BENCHMARKS=OFF
 cmake --build "$asan_dir" --parallel "$jobs"
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1} \

@@ -209,7 +209,7 @@ TYPED_TEST(WorldLifeCycleTest, HugeBoxOverMoreBoxesThanABufferHoldsOnSeveralThre
     alone.detect(single);
     EXPECT_EQ(threaded.size(), n);  // the small boxes are apart: every pair has the huge box
     EXPECT_EQ(threaded, single) << "the thread count changed the pairs or their order";
-    if (kTestPipeline == Pipeline::persistent_cuts) {  // no copy of the pairs is kept
+    if (test_pipeline() == Pipeline::persistent_cuts) {  // no copy of the pairs is kept
         EXPECT_LT(world.bytes_held(), n * (sizeof(typename TestFixture::BoxT) + 256));
     }
 }

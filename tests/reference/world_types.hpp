@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <cstdlib>
 #include <string>
+#include <string_view>
 
 #include "smb/world.hpp"
 
@@ -13,17 +15,16 @@ namespace smb::test {
 
 using WorldTypes = ::testing::Types<World2f, World2d, World3f, World3d>;
 
-/// The pipeline the world tests run: every such test is built twice (tests/CMakeLists.txt),
-/// once for each pipeline, so both are held to brute force.
-#if defined(SMB_TEST_PAPER_PIPELINE)
-inline constexpr Pipeline kTestPipeline = Pipeline::paper_lists;
-#else
-inline constexpr Pipeline kTestPipeline = Pipeline::persistent_cuts;
-#endif
+/// The pipeline the world tests run: CTest runs each such test twice (tests/CMakeLists.txt),
+/// once with SMB_TEST_PIPELINE=paper, so both pipelines are held to brute force.
+inline Pipeline test_pipeline() {
+    const char* chosen = std::getenv("SMB_TEST_PIPELINE");
+    return chosen != nullptr && std::string_view(chosen) == "paper" ? Pipeline::paper_lists : Pipeline::persistent_cuts;
+}
 
 inline WorldSettings test_settings() {
     WorldSettings settings;
-    settings.pipeline = kTestPipeline;
+    settings.pipeline = test_pipeline();
     return settings;
 }
 
