@@ -25,11 +25,13 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "smb/errors.hpp"
 #include "smb/filter.hpp"
 #include "smb/world.hpp"
+#include "world_events_queries_check.hpp"
 
 namespace smb::fuzz {
 
@@ -212,6 +214,7 @@ private:
             case 9:
                 if (in.byte() % 8 == 0) {
                     world_.clear();
+                    events_model_.note_cleared();
                     model_.clear();
                     filters_.clear();
                     statics_.clear();
@@ -270,6 +273,7 @@ private:
 
     /// A box removed forgets its filter and static flag.
     void forget(smb::BoxId id) {
+        events_model_.note_removed(id);
         model_.erase(id);
         filters_.erase(id);
         statics_.erase(id);
@@ -472,11 +476,27 @@ private:
                 if (smb::overlaps(a->second, b->second) && paired(a->first, b->first))
                     expected.push_back({a->first, b->first});
 
-        check_detection(expected, world_.settings(), through_sink,
-                        [&](auto& pairs_or_sink) { world_.detect(pairs_or_sink); });
+        // Into a vector, with events; a detection over the pair limit throws and completes nothing.
+        bool completed = false;
+        check_detection(expected, world_.settings(), through_sink, [&](auto& pairs_or_sink) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(pairs_or_sink)>, std::vector<smb::Pair>>)
+                world_.detect(pairs_or_sink, events_);
+            else
+                world_.detect(pairs_or_sink);
+            completed = true;
+        });
+        if (!completed) return;
+        if (through_sink) {
+            events_model_.forget_removals();
+            return;
+        }
+        events_model_.check(events_, expected, [&](smb::BoxId id) { return model_.count(id) != 0; });
+        check_queries(world_, model_);
     }
 
     World world_;
+    smb::PairEvents events_;
+    EventsModel events_model_;
     Model model_;
     std::map<smb::BoxId, smb::Filter> filters_;
     std::set<smb::BoxId> statics_;

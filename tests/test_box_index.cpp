@@ -6,10 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <type_traits>
 #include <vector>
@@ -262,6 +264,23 @@ TYPED_TEST(BoxIndexTest, FarCoordinatesHugeAndTiny) {
     }
     this->set_ids();
     this->check_all(200, 1600, 1.024e6);
+}
+
+TYPED_TEST(BoxIndexTest, SubnormalScene) {
+    // A scene a few hundred subnormals wide: the cell side would round to 0 or have no finite
+    // inverse, and the index must still answer exactly (one cell, unindexed).
+    using Rt = typename TestFixture::Real;
+    constexpr int Dm = TestFixture::Dim;
+    this->mixed_scene(200, 64);
+    const Rt tiny = std::numeric_limits<Rt>::denorm_min() * 4;
+    for (auto& b : this->boxes) {
+        for (int k = 0; k < Dm; ++k) {
+            b.min[k] = std::round(b.min[k]) * tiny;
+            b.max[k] = std::max(b.min[k], std::round(b.max[k]) * tiny);
+        }
+    }
+    this->set_ids();
+    this->check_all(50, 200, 64 * static_cast<double>(tiny));
 }
 
 TYPED_TEST(BoxIndexTest, DegenerateScenes) {

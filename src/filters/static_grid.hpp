@@ -174,7 +174,7 @@ private:
             cell_count_ *= cells_[k];
             origin_[k] = lo[k];
             const double range = hi[k] - lo[k];
-            const bool spread = range > 0 && std::isfinite(range);
+            const bool spread = range > 0 && std::isfinite(range) && std::isfinite(count[k] / range);
             inverse_side_[k] = spread ? count[k] / range : 0;
             if (spread) smallest_side_ = std::min(smallest_side_, range / count[k]);
         }

@@ -141,6 +141,9 @@ private:
         if (!(span > 0) || !std::isfinite(span)) return 1;
         double side = mean_extent > 0 ? mean_extent : span / cap;
         side = std::max(side, span * 1e-12);
+        // Subnormal scenes (a span near 1e-308) can round the side to 0, which no growth
+        // below would leave: the whole span is one cell then.
+        if (!(side > 0)) return span;
         for (;;) {
             double cells = 1;
             for (int k = 0; k < Dim; ++k) cells *= std::max(1.0, std::ceil((upper[k] - origin[k]) / side));
@@ -171,8 +174,10 @@ private:
         // one cell holds everything (inv = 0 sends every coordinate to it), exact but unindexed.
         bool finite_span = true;
         for (int k = 0; k < Dim; ++k) finite_span = finite_span && std::isfinite(upper[k] - origin[k]);
-        const double side0 =
+        double side0 =
             finite_span ? finest_side(extent_sum / static_cast<double>(n)) : std::numeric_limits<double>::infinity();
+        // A subnormal side has no finite inverse: the same single cell.
+        if (!std::isfinite(1 / side0)) side0 = std::numeric_limits<double>::infinity();
 
         // Level of each box: the finest whose side is at least the box's largest extent, up to
         // the level of a single cell per axis.
