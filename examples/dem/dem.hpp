@@ -61,9 +61,11 @@ struct Energy {
 
 /// Seconds spent in each part of the steps so far.
 struct Timings {
-    double broad_phase = 0;  // boxes, detection (and events), or the grid
-    double contacts = 0;     // contact list, contact and wall forces
-    double integration = 0;  // the two half kicks and the drift
+    double broad_phase = 0;    // boxes, detection and events, or the grid
+    double pair_events = 0;    // of broad_phase: smb's events (the grid's pairs come sorted)
+    std::size_t rebuilds = 0;  // steps whose broad phase rebuilt its candidates from scratch
+    double contacts = 0;       // contact list, contact and wall forces
+    double integration = 0;    // the two half kicks and the drift
 };
 
 class Simulation {

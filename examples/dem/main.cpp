@@ -114,6 +114,8 @@ int main(int argc, char** argv) {
             "integration {:.3f} ms ({:.1f}%)\n",
             measured * per_step, t.broad_phase * per_step, 100 * t.broad_phase / measured, t.contacts * per_step,
             100 * t.contacts / measured, t.integration * per_step, 100 * t.integration / measured);
+        fmt::print("  broad phase    {:.3f} ms per step, of which pair events {:.3f} ms; rebuilt at {} of {} steps\n",
+                   t.broad_phase * per_step, t.pair_events * per_step, t.rebuilds, simulation.steps());
         fmt::print("  contacts       {} pairs of boxes, {} touching\n", simulation.contact_count(),
                    simulation.touching_pairs());
         fmt::print("  energy         kinetic {:.6g}, rotational {:.6g}, potential {:.6g}, elastic {:.6g}\n", e.kinetic,

@@ -5,8 +5,8 @@
     /usr/bin/python3 examples/dem/plot_dem.py --energy energy.csv --particles particles.csv \
         --out docs/dem
 
-writes <out>/energy.png and <out>/packing.png (numpy and matplotlib: Debian's python3-numpy,
-python3-matplotlib).
+writes <out>/<prefix>energy.png and, given --particles, <out>/<prefix>packing.png (numpy and
+matplotlib: Debian's python3-numpy, python3-matplotlib).
 """
 
 import argparse
@@ -21,15 +21,20 @@ import numpy as np  # noqa: E402
 
 def plot_energy(path, out, title):
     data = np.genfromtxt(path, delimiter=",", names=True)
-    fig, ax = plt.subplots(figsize=(7, 4.2))
+    fig, (ax, drift) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, gridspec_kw={"height_ratios": [2, 1]})
     for name, label in [("total", "total"), ("potential", "gravity"), ("kinetic", "kinetic"),
                         ("rotational", "rotational"), ("elastic", "springs")]:
-        ax.plot(data["time"], data[name], label=label)
-    ax.set_xlabel("time  [sqrt(d / g)]")
-    ax.set_ylabel("energy  [m g d, m of a sphere of diameter d]")
+        if np.any(data[name] != 0):
+            ax.plot(data["time"], data[name], label=label)
+    ax.set_ylabel("energy  [rho g d^4]")
     ax.set_title(title)
-    ax.legend(loc="upper right")
+    ax.legend(loc="best")
     ax.grid(alpha=0.3)
+    # The total against its start: the integrator's error, or what damping and friction took.
+    drift.plot(data["time"], data["total"] / data["total"][0] - 1, color="k", lw=0.8)
+    drift.set_ylabel("total / start - 1")
+    drift.set_xlabel("time  [sqrt(d / g)]")
+    drift.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(out, dpi=120)
     plt.close(fig)
@@ -69,13 +74,15 @@ def plot_packing(path, out, title):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--energy", required=True, help="energy CSV of smb_dem --energy-csv")
-    parser.add_argument("--particles", required=True, help="particle CSV of smb_dem --particles-csv")
+    parser.add_argument("--particles", help="particle CSV of smb_dem --particles-csv")
+    parser.add_argument("--prefix", default="", help="put before the PNGs' names")
     parser.add_argument("--out", default=".", help="folder of the PNGs")
     parser.add_argument("--title", default="smb_dem", help="title above both pictures")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    plot_energy(args.energy, os.path.join(args.out, "energy.png"), args.title)
-    plot_packing(args.particles, os.path.join(args.out, "packing.png"), args.title)
+    plot_energy(args.energy, os.path.join(args.out, args.prefix + "energy.png"), args.title)
+    if args.particles:
+        plot_packing(args.particles, os.path.join(args.out, args.prefix + "packing.png"), args.title)
 
 
 if __name__ == "__main__":
