@@ -44,7 +44,7 @@ struct Settings {
     double time_step = 0;               // 0: a twentieth of the collision time
 
     BroadPhase broad_phase = BroadPhase::smb;
-    double skin = 0.1;  // of the broad phase's fat boxes, in diameters
+    double skin = 0.1;  // the broad phase's fat boxes stick out by this on every side, in diameters
     std::size_t threads = 1;
     std::uint64_t seed = 1;
 };

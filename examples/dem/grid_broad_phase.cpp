@@ -28,12 +28,11 @@ void GridBroadPhase::detect(std::span<const smb::Box3d> boxes, std::vector<smb::
 
 void GridBroadPhase::rebuild(std::span<const smb::Box3d> boxes) {
     ++rebuilds_;
-    const double half_skin = skin_ / 2;
     fat_.resize(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         for (int k = 0; k < 3; ++k) {
-            fat_[i].min[k] = boxes[i].min[k] - half_skin;
-            fat_[i].max[k] = boxes[i].max[k] + half_skin;
+            fat_[i].min[k] = boxes[i].min[k] - skin_;
+            fat_[i].max[k] = boxes[i].max[k] + skin_;
         }
     }
     candidates_.clear();

@@ -3,7 +3,8 @@
 // A uniform grid broad phase with a Verlet skin, as DEM and molecular dynamics codes write it:
 // the baseline beside which the example measures smb (--broad-phase grid).
 //
-// Each box gets a fat box, grown by half the skin on every side. A rebuild sorts the boxes
+// Each box gets a fat box, grown by the skin on every side (as smb's Detector grows it, so
+// that both hold the same candidates). A rebuild sorts the boxes
 // into cubic cells as wide as the widest fat box (a counting sort), so that two fat boxes that
 // overlap have their centres in the same or adjacent cells; each cell is tested against itself
 // and 13 of its 26 neighbours (the half stencil), which finds every pair once. The pairs of fat
@@ -24,7 +25,8 @@ namespace dem {
 
 class GridBroadPhase {
 public:
-    /// `skin`: how far fat boxes stick out beyond the boxes, in all (half on each box).
+    /// `skin`: how far fat boxes stick out beyond the boxes on every side
+    /// (smb::DetectorSettings::skin).
     explicit GridBroadPhase(double skin) : skin_(skin) {}
 
     /// Replaces `pairs` by every pair of `boxes` that overlap (closed convention, as smb),
