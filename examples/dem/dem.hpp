@@ -53,7 +53,7 @@ struct Settings {
 /// the integrator's error.
 struct Energy {
     double kinetic = 0;     // translation
-    double rotational = 0;  //
+    double rotational = 0;  // spin
     double potential = 0;   // gravity, from z = 0
     double elastic = 0;     // normal and tangential springs, particles and walls
     [[nodiscard]] double total() const { return kinetic + rotational + potential + elastic; }

@@ -42,7 +42,8 @@ int main(int argc, char** argv) {
     CLI::App app{"smb_dem: spheres poured into a box, with smb as the broad phase"};
     app.add_option("-n,--particles", settings.particles, "number of spheres")->capture_default_str();
     app.add_option("-s,--steps", steps, "time steps (at most, with --settle)")->capture_default_str();
-    app.add_flag("--settle", settle, "stop once the spheres are at rest (kinetic energy below 1e-6 m g d each)");
+    app.add_flag("--settle", settle,
+                 "stop once the spheres are at rest (kinetic energy below 1e-6 rho g d^4 per sphere)");
     app.add_option("--container", container, "container size X,Y,Z in diameters")->delimiter(',')->expected(3);
     app.add_option("--spacing", settings.spacing, "initial lattice pitch in diameters")->capture_default_str();
     app.add_option("--polydispersity", settings.polydispersity, "diameters uniform in [1 - p, 1]")
