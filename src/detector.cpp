@@ -94,6 +94,11 @@ std::size_t Detector<Real, Dim>::bytes_held() const noexcept {
     return state_ ? state_->bytes_held() : 0;
 }
 
+template <std::floating_point Real, int Dim>
+CandidatePairs Detector<Real, Dim>::candidates() {
+    return state_ ? state_->candidates() : CandidatePairs{};
+}
+
 template class Detector<float, 2>;
 template class Detector<double, 2>;
 template class Detector<float, 3>;

@@ -15,6 +15,7 @@
 #include "core/stopwatch.hpp"
 #include "cuts/held_cut_pipeline.hpp"
 #include "skin/skin_list.hpp"
+#include "smb/candidate_pairs.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
 #include "smb/settings.hpp"
@@ -43,7 +44,24 @@ public:
     std::vector<Box<Real, Dim>>& gathered() noexcept { return gathered_; }
     std::vector<std::uint32_t>& gathered_origin() noexcept { return gathered_origin_; }
 
+    /// The skin's candidates after the last detection, turned into the caller's indices on the
+    /// first call after it (smb/candidate_pairs.hpp).
+    CandidatePairs candidates() {
+        if (!skin_detected_) return {};
+        if (!candidates_ready_) {
+            skin_.candidate_pairs(candidate_pairs_);
+            candidate_margin_ = skin_.candidate_margin();
+            candidates_ready_ = true;
+        }
+        return CandidatePairs{candidate_pairs_, candidate_margin_, true};
+    }
+    /// A filtered detection ran over the boxes it gathered: the candidates name those, not the
+    /// caller's indices.
+    void forget_candidates() noexcept { skin_detected_ = false; }
+
     void clear() {
+        forget_candidates();
+        std::vector<Pair>().swap(candidate_pairs_);
         pipeline_.clear();
         skin_.clear();
         skin_pause_ = 0;
@@ -56,6 +74,8 @@ public:
 
     DetectStats detect(std::span<const Box<Real, Dim>> boxes, const PairSink& sink) {
         const Stopwatch whole;
+        forget_candidates();
+        candidates_ready_ = false;
         DetectStats stats;
         stats.boxes = boxes.size();
         SceneBounds<Real, Dim> bounds;
@@ -67,15 +87,17 @@ public:
 
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
         retested_ = 0;
+        bool used_skin = false;
         if (boxes.empty()) {
             pipeline_.detect_nothing(settings_, output, stats);
             skin_.clear();
-        } else if (!detected_with_skin(boxes, bounds, output, stats)) {
+        } else if (used_skin = detected_with_skin(boxes, bounds, output, stats); !used_skin) {
             pipeline_.forget_slots_from(boxes.size());
             pipeline_.detect(boxes, {}, bounds, settings_, output, stats);
             retested_ = pipeline_.retested();
         }
         output.flush();
+        skin_detected_ = used_skin;
         stats.bytes_held = bytes_held();
         stats.total_seconds = whole.seconds();
         stats_ = stats;
@@ -83,7 +105,8 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() + chunk_.capacity() * sizeof(Pair) +
+        return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() +
+               (chunk_.capacity() + candidate_pairs_.capacity()) * sizeof(Pair) +
                gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t);
     }
 
@@ -122,6 +145,10 @@ private:
     std::vector<Pair> chunk_;
     std::vector<Box<Real, Dim>> gathered_;
     std::vector<std::uint32_t> gathered_origin_;
+    bool skin_detected_ = false;     // the last detection ran on the skin list, and returned
+    bool candidates_ready_ = false;  // candidate_pairs_ and candidate_margin_ are its own
+    std::vector<Pair> candidate_pairs_;
+    double candidate_margin_ = 0;
 };
 
 }  // namespace smb::detail

@@ -98,6 +98,7 @@ DetectStats Detector<Real, Dim>::detect(std::span<const Box<Real, Dim>> boxes, c
     stats.boxes = boxes.size();
     stats.pairs = filtered.finish();
     state.set_reported(stats.boxes, stats.pairs);
+    if (gathered) state.forget_candidates();
     return stats;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "smb/box.hpp"
+#include "smb/candidate_pairs.hpp"
 #include "smb/errors.hpp"
 #include "smb/filter.hpp"
 #include "smb/held_precision.hpp"
@@ -113,6 +114,14 @@ public:
     /// Heap bytes held by the detector now (its own accounting of its arrays); the caller's
     /// array is not counted.
     [[nodiscard]] std::size_t bytes_held() const noexcept;
+
+    /// With a skin: the candidate pairs (the Verlet list) after the last detect(), the margin
+    /// within which it holds every pair, and whether there is one (smb/candidate_pairs.hpp).
+    /// The span stays valid until the next detect(), clear(), move or destruction. The first
+    /// call after a detection turns the list into the caller's indices (linear in the
+    /// candidates); later calls return the same. Not const for that reason, and not
+    /// synchronised, as detect().
+    [[nodiscard]] CandidatePairs candidates();
 
 private:
     /// The state; a moved-from detector (state_ null) gets a fresh one first.

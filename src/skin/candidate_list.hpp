@@ -78,6 +78,8 @@ public:
 
     /// Candidates and tombstones.
     [[nodiscard]] std::size_t size() const noexcept { return candidates_.size(); }
+    /// The list as it stands: candidates, and tombstones (a == b) to skip.
+    [[nodiscard]] std::span<const Candidate> entries() const noexcept { return candidates_; }
     /// Candidates without the tombstones.
     [[nodiscard]] std::size_t live() const noexcept { return candidates_.size() - tombstones_; }
 

@@ -110,6 +110,42 @@ public:
     /// Pairs the held floats could not settle, tested again on the input, in the last detection.
     [[nodiscard]] std::size_t retested() const noexcept { return retested_; }
 
+    /// The live candidates of the last detection as pairs of the caller's indices, a < b, in
+    /// the order of the list (smb/candidate_pairs.hpp).
+    void candidate_pairs(std::vector<Pair>& out) const {
+        out.clear();
+        out.reserve(candidates_.live());
+        for (const auto& candidate : candidates_.entries()) {
+            if (candidate.a == candidate.b) continue;  // a tombstone
+            const BoxId a = slot_of_[candidate.a];
+            const BoxId b = slot_of_[candidate.b];
+            out.push_back(a < b ? Pair{a, b} : Pair{b, a});
+        }
+    }
+
+    /// The least distance from a box of the last detection to a face of its fat box, on the
+    /// caller's coordinates. Measured on the held floats, then lowered by their rounding: a
+    /// held coordinate is within half a float step of the shifted input (held_box.hpp), at most
+    /// 2^-24 of the largest held magnitude, so 2^-22 of it covers both boxes' sides.
+    [[nodiscard]] double candidate_margin() const noexcept {
+        const std::size_t n = input_.size();
+        double least = skin_;
+        double largest = 0;
+        for (std::size_t p = 0; p < slot_of_.size(); ++p) {
+            if (slot_of_[p] >= n) continue;
+            const Held& box = held_[p];
+            const Held& fat = fat_[p];
+            for (int k = 0; k < Dim; ++k) {
+                least = std::min(least, static_cast<double>(box.min[k]) - static_cast<double>(fat.min[k]));
+                least = std::min(least, static_cast<double>(fat.max[k]) - static_cast<double>(box.max[k]));
+                largest = std::max(
+                    {largest, std::abs(static_cast<double>(fat.min[k])), std::abs(static_cast<double>(fat.max[k]))});
+            }
+        }
+        if (!kExact) least -= std::ldexp(largest, -22) + std::ldexp(1.0, -140);
+        return std::max(least, 0.0);
+    }
+
     void clear() { *this = SkinList(); }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
