@@ -14,6 +14,7 @@
 #include "core/settings_check.hpp"
 #include "core/stopwatch.hpp"
 #include "cuts/held_cut_pipeline.hpp"
+#include "periodic/periodic_path.hpp"
 #include "skin/skin_list.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
@@ -42,10 +43,14 @@ public:
     /// Where a filtered detection gathers the boxes that can pair, and their indices.
     std::vector<Box<Real, Dim>>& gathered() noexcept { return gathered_; }
     std::vector<std::uint32_t>& gathered_origin() noexcept { return gathered_origin_; }
+    /// The periodic detection (periodic/periodic_path.hpp) and the stats it leaves.
+    PeriodicPath<Real, Dim>& periodic() noexcept { return periodic_; }
+    void set_last_stats(const DetectStats& stats) noexcept { stats_ = stats; }
 
     void clear() {
         pipeline_.clear();
         skin_.clear();
+        periodic_.clear();
         skin_pause_ = 0;
         retested_ = 0;
         std::vector<Box<Real, Dim>>().swap(gathered_);
@@ -84,7 +89,8 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() + chunk_.capacity() * sizeof(Pair) +
-               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t);
+               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t) +
+               periodic_.bytes_held();
     }
 
 private:
@@ -122,6 +128,7 @@ private:
     std::vector<Pair> chunk_;
     std::vector<Box<Real, Dim>> gathered_;
     std::vector<std::uint32_t> gathered_origin_;
+    PeriodicPath<Real, Dim> periodic_;
 };
 
 }  // namespace smb::detail
