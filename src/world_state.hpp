@@ -23,7 +23,6 @@
 #include "cuts/held_cut_pipeline.hpp"
 #include "filters/world_filters.hpp"
 #include "paper/paper_pipeline.hpp"
-#include "periodic/periodic_images.hpp"
 #include "periodic/periodic_path.hpp"
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
@@ -126,9 +125,6 @@ public:
             throw ArgumentError(
                 "detect(domain, pairs): a periodic detection does not apply filters, static boxes or a predicate, "
                 "and some are in use");
-        PeriodicImages<Real, Dim>::check(
-            store_.boxes(), domain, [&](std::size_t s) { return store_.alive(static_cast<Slot>(s)); },
-            [&](std::size_t s) { return store_.id_at(static_cast<Slot>(s)); });
         const Stopwatch whole;
         if (filters_.engaged()) filters_.disengage();
         if (!periodic_engaged_) {
@@ -137,7 +133,9 @@ public:
             periodic_engaged_ = true;
         }
         // The periodic pipeline sees box i at index i: compacting moves the last boxes into the
-        // holes, which costs them their place in its order, nothing more.
+        // holes, which costs them their place in its order, nothing more. The boxes are checked
+        // as they are gathered: a box too large for the domain throws then, and what changed
+        // before (the compaction, the default pipelines forgotten) costs speed, not results.
         if (store_.has_removals()) store_.compact(store_.slot_count());
         DetectStats stats;
         if (events == nullptr) {

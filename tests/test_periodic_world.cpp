@@ -120,7 +120,8 @@ TYPED_TEST(PeriodicWorldTest, EventsFollowPairsAcrossTheBoundary) {
     const auto domain = cube_domain<Real, Dim>(side, (1u << Dim) - 1);
     World world;
     Scene<World> scene;
-    for (BoxId id = 0; id < scaled(300); ++id) scene.insert(world, id * 3, particle_box<Real, Dim>(random, side, 0.3, 2));
+    for (BoxId id = 0; id < scaled(300); ++id)
+        scene.insert(world, id * 3, particle_box<Real, Dim>(random, side, 0.3, 2));
     PairEvents events;
     std::vector<PeriodicPair> pairs;
     std::vector<PeriodicPair> before;
@@ -194,6 +195,24 @@ TYPED_TEST(PeriodicWorldTest, PeriodicAndOrdinaryDetectionsAlternate) {
         world.update(scene.ids, scene.boxes);
         scene.remove(world, uniform_index(random, scene.ids.size()));
     }
+}
+
+TYPED_TEST(PeriodicWorldTest, AnEmptyWorld) {
+    using World = TypeParam;
+    using Real = typename World::real_type;
+    constexpr int Dim = World::dimension;
+    World world;
+    std::vector<PeriodicPair> pairs{PeriodicPair{1, 2, {}}};
+    world.detect(cube_domain<Real, Dim>(4, 3), pairs);
+    EXPECT_TRUE(pairs.empty());
+    world.insert(5, typename World::box_type{});
+    world.insert(6, typename World::box_type{});
+    world.detect(cube_domain<Real, Dim>(4, 3), pairs);
+    ASSERT_EQ(pairs.size(), 1u);
+    EXPECT_EQ(pairs[0], (PeriodicPair{5, 6, {}}));
+    world.clear();
+    world.detect(cube_domain<Real, Dim>(4, 3), pairs);
+    EXPECT_TRUE(pairs.empty());
 }
 
 TYPED_TEST(PeriodicWorldTest, RejectedInputChangesNothing) {

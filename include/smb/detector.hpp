@@ -104,9 +104,9 @@ public:
     /// by every pair (a, b, shift) such that box a overlaps box b translated by `shift` periods
     /// (overlaps_with_shift), each pair once, a < b. Throws ArgumentError for a bad domain and
     /// InvalidBoxError for a box that is invalid or too large for it (extent not below half the
-    /// period), naming its index, before anything changes. Runs its own cuts beside the
-    /// ordinary detection's (threads as the settings say; the skin is not used), so calls with
-    /// and without a domain may alternate on one detector.
+    /// period), naming its index, before anything changes. Runs its own cuts (and skin list,
+    /// with a skin) beside the ordinary detection's, so calls with and without a domain may
+    /// alternate on one detector; threads as the settings say.
     DetectStats detect(std::span<const box_type> boxes, const PeriodicDomain<Real, Dim>& domain,
                        std::vector<PeriodicPair>& pairs);
     /// The same, then `events` updated with the (a, b) of the pairs: a pair whose shift changes

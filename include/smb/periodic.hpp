@@ -49,7 +49,8 @@ struct PeriodicDomain {
     }
     /// The period of axis k, in double: every translation is computed from it.
     [[nodiscard]] double period(int k) const noexcept {
-        return static_cast<double>(hi[static_cast<std::size_t>(k)]) - static_cast<double>(lo[static_cast<std::size_t>(k)]);
+        return static_cast<double>(hi[static_cast<std::size_t>(k)]) -
+               static_cast<double>(lo[static_cast<std::size_t>(k)]);
     }
 };
 

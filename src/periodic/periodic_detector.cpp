@@ -6,19 +6,16 @@
 #include <vector>
 
 #include "detector_state.hpp"
-#include "periodic/periodic_images.hpp"
 #include "smb/detector.hpp"
 
 namespace smb {
 
 namespace {
 
-/// Checks the domain and every box before anything changes.
+/// Checks the domain before anything changes (the boxes are checked as they are gathered).
 template <std::floating_point Real, int Dim>
-void check_periodic_input(std::span<const Box<Real, Dim>> boxes, const PeriodicDomain<Real, Dim>& domain) {
+void check_periodic_input(std::span<const Box<Real, Dim>>, const PeriodicDomain<Real, Dim>& domain) {
     check_domain(domain);
-    detail::PeriodicImages<Real, Dim>::check(
-        boxes, domain, [](std::size_t) { return true; }, [](std::size_t i) { return static_cast<BoxId>(i); });
 }
 
 }  // namespace
@@ -28,7 +25,8 @@ DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const P
                                         std::vector<PeriodicPair>& pairs) {
     auto& state = this->state();
     check_periodic_input(boxes, domain);
-    const DetectStats stats = state.periodic().detect(boxes, {}, domain, state.settings(), pairs);
+    const DetectStats stats =
+        state.periodic().detect(boxes, {}, domain, state.settings(), pairs, state.settings().skin);
     state.set_last_stats(stats);
     return stats;
 }
@@ -39,15 +37,16 @@ DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const P
     auto& state = this->state();
     check_periodic_input(boxes, domain);
     const DetectStats stats = state.periodic().detect(
-        boxes, {}, domain, state.settings(), pairs, [&](std::span<const Pair> plain) { events.update(plain); });
+        boxes, {}, domain, state.settings(), pairs, [&](std::span<const Pair> plain) { events.update(plain); },
+        state.settings().skin);
     state.set_last_stats(stats);
     return stats;
 }
 
-#define SMB_PERIODIC_DETECTOR(R, D)                                                                              \
-    template DetectStats Detector<R, D>::detect(std::span<const Box<R, D>>, const PeriodicDomain<R, D>&,         \
-                                                std::vector<PeriodicPair>&);                                     \
-    template DetectStats Detector<R, D>::detect(std::span<const Box<R, D>>, const PeriodicDomain<R, D>&,         \
+#define SMB_PERIODIC_DETECTOR(R, D)                                                                      \
+    template DetectStats Detector<R, D>::detect(std::span<const Box<R, D>>, const PeriodicDomain<R, D>&, \
+                                                std::vector<PeriodicPair>&);                             \
+    template DetectStats Detector<R, D>::detect(std::span<const Box<R, D>>, const PeriodicDomain<R, D>&, \
                                                 std::vector<PeriodicPair>&, PairEvents&);
 
 SMB_PERIODIC_DETECTOR(float, 2)

@@ -5,7 +5,8 @@
 // shift, or drops it.
 //
 // Two boxes gathered as they are (keys without kTranslatedKey) overlap exactly as the caller's
-// boxes do, under the shift 0: reported at once, without reading memory. Any other pair is
+// boxes do, under the shift 0: reported at once, without reading memory where the keys hold
+// the names. Any other pair is
 // decoded to (owner, mask) on both sides: the same owner (a box and its own image, which never
 // overlap in truth) and masks that share an axis (a repeat of a pair found without both images)
 // are dropped; the rest are confirmed on the caller's boxes with overlaps_with_shift, since
@@ -37,29 +38,34 @@ public:
     PeriodicReport(const PeriodicImages<Real, Dim>& images, std::span<const box_type> boxes,
                    std::span<const BoxId> names, const PeriodicDomain<Real, Dim>& domain,
                    std::vector<PeriodicPair>& out, std::size_t limit)
-        : images_(images), boxes_(boxes), names_(names), domain_(domain), out_(out), limit_(limit), end_(out.size() + limit) {}
+        : images_(images),
+          boxes_(boxes),
+          names_(names),
+          domain_(domain),
+          out_(out),
+          limit_(limit),
+          end_(out.size() + limit),
+          packed_(images.packed()) {}
 
     void operator()(BoxId x, BoxId y) {
         if (((x | y) & kTranslatedKey) == 0) [[likely]] {
-            emit(name(x), name(y), {});
+            emit(plain_name(x), plain_name(y), {});
             return;
         }
-        const auto dx = images_.decode(x);
-        const auto dy = images_.decode(y);
-        if (dx.owner == dy.owner || (dx.mask & dy.mask) != 0) return;
+        const Side sx = side(x);
+        const Side sy = side(y);
+        if (sx.owner == sy.owner || (sx.mask & sy.mask) != 0) return;
         // y's shift relative to x: n_x - n_y + u - v on every periodic axis.
-        const auto& nx = images_.wrap(dx.owner);
-        const auto& ny = images_.wrap(dy.owner);
         std::array<std::int32_t, 3> shift{};
         for (int k = 0; k < Dim; ++k) {
             const auto ks = static_cast<std::size_t>(k);
-            shift[ks] = nx[ks] - ny[ks] + static_cast<std::int32_t>((dx.mask >> k) & 1u) -
-                        static_cast<std::int32_t>((dy.mask >> k) & 1u);
+            shift[ks] = sx.wrap[ks] - sy.wrap[ks] + static_cast<std::int32_t>((sx.mask >> k) & 1u) -
+                        static_cast<std::int32_t>((sy.mask >> k) & 1u);
         }
-        BoxId a = name(dx.owner);
-        BoxId b = name(dy.owner);
-        std::uint32_t first = dx.owner;
-        std::uint32_t second = dy.owner;
+        BoxId a = sx.name;
+        BoxId b = sy.name;
+        std::uint32_t first = sx.owner;
+        std::uint32_t second = sy.owner;
         if (b < a) {
             std::swap(a, b);
             std::swap(first, second);
@@ -74,8 +80,27 @@ public:
     }
 
 private:
-    [[nodiscard]] BoxId name(BoxId index) const noexcept {
-        return names_.empty() ? index : names_[static_cast<std::size_t>(index)];
+    /// One box of a pair: the caller's box, its name, and how its gathered box was translated.
+    struct Side {
+        std::uint32_t owner;
+        BoxId name;
+        std::uint8_t mask;
+        typename PeriodicImages<Real, Dim>::Wrap wrap;
+    };
+
+    [[nodiscard]] BoxId plain_name(BoxId key) const noexcept {
+        if (packed_) return key >> kIndexBits;
+        return names_.empty() ? key : names_[static_cast<std::size_t>(key)];
+    }
+
+    [[nodiscard]] Side side(BoxId key) const noexcept {
+        if ((key & kTranslatedKey) == 0) {
+            const auto owner = static_cast<std::uint32_t>(packed_ ? key & kIndexMask : key);
+            return Side{owner, plain_name(key), 0, {}};
+        }
+        const auto& record = images_.record(key);
+        const BoxId name = names_.empty() ? record.owner : names_[record.owner];
+        return Side{record.owner, name, record.mask, record.wrap};
     }
 
     void emit(BoxId a, BoxId b, const std::array<std::int32_t, 3>& shift) {
@@ -93,6 +118,7 @@ private:
     std::vector<PeriodicPair>& out_;
     std::size_t limit_;
     std::size_t end_;
+    bool packed_;
 };
 
 }  // namespace smb::detail

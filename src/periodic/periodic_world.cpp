@@ -20,10 +20,9 @@ DetectStats World<Real, Dim>::detect(const PeriodicDomain<Real, Dim>& domain, st
     return state().detect_periodic(domain, pairs, &events);
 }
 
-#define SMB_PERIODIC_WORLD(R, D)                                                                           \
-    template DetectStats World<R, D>::detect(const PeriodicDomain<R, D>&, std::vector<PeriodicPair>&);     \
-    template DetectStats World<R, D>::detect(const PeriodicDomain<R, D>&, std::vector<PeriodicPair>&, \
-                                             PairEvents&);
+#define SMB_PERIODIC_WORLD(R, D)                                                                       \
+    template DetectStats World<R, D>::detect(const PeriodicDomain<R, D>&, std::vector<PeriodicPair>&); \
+    template DetectStats World<R, D>::detect(const PeriodicDomain<R, D>&, std::vector<PeriodicPair>&, PairEvents&);
 
 SMB_PERIODIC_WORLD(float, 2)
 SMB_PERIODIC_WORLD(double, 2)
