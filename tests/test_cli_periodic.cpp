@@ -92,7 +92,8 @@ TEST(CliPeriodic, ThreeDimensionsEveryAxisPeriodic) {
 TEST(CliPeriodic, BadArgumentsExit64) {
     TempFolder folder;
     write_file(folder.path() / "scene.csv", "frame,id,xmin,ymin,xmax,ymax\n0,1,0,0,1,1\n");
-    for (const std::string spec : {"0:10", "0:10,0:10,0:10,0:10", "10:0,-", "0:x,-", "0:inf,-", "0-10,-", "0:10,nan:3"}) {
+    for (const std::string spec :
+         {"0:10", "0:10,0:10,0:10,0:10", "10:0,-", "0:x,-", "0:inf,-", "0-10,-", "0:10,nan:3"}) {
         const auto result = run_smb(folder, {"pairs", "--periodic", spec, "-i", "scene.csv"});
         EXPECT_EQ(result.status, 64) << spec << ": " << result.err;
         EXPECT_NE(result.err.find("--periodic"), std::string::npos) << result.err;

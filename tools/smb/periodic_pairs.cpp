@@ -74,8 +74,7 @@ void write_frames(io::SceneReader& reader, std::ostream& out, const PeriodicAxes
             if constexpr (Dim == 2)
                 fmt::format_to(text, "{},{},{},{},{}\n", frame.number, p.a, p.b, p.shift[0], p.shift[1]);
             else
-                fmt::format_to(text, "{},{},{},{},{},{}\n", frame.number, p.a, p.b, p.shift[0], p.shift[1],
-                               p.shift[2]);
+                fmt::format_to(text, "{},{},{},{},{},{}\n", frame.number, p.a, p.b, p.shift[0], p.shift[1], p.shift[2]);
             if (buffer.size() >= kFlushAt) flush();
         }
         previous_ids.swap(frame.ids);
@@ -99,8 +98,7 @@ PeriodicAxes parse_periodic_axes(const std::string& text) {
         } else {
             const std::size_t colon = field.find(':');
             if (colon == std::string_view::npos)
-                throw std::invalid_argument(
-                    fmt::format("the {} axis '{}' is neither LO:HI nor '-'", axis, field));
+                throw std::invalid_argument(fmt::format("the {} axis '{}' is neither LO:HI nor '-'", axis, field));
             const double lo = parse_bound(field.substr(0, colon), axis);
             const double hi = parse_bound(field.substr(colon + 1), axis);
             if (!(lo < hi))
@@ -112,15 +110,14 @@ PeriodicAxes parse_periodic_axes(const std::string& text) {
         rest = rest.substr(comma + 1);
     }
     if (axes.size() != 2 && axes.size() != 3)
-        throw std::invalid_argument(
-            fmt::format("expected 2 or 3 axes (X0:X1,Y0:Y1[,Z0:Z1]), found {}", axes.size()));
+        throw std::invalid_argument(fmt::format("expected 2 or 3 axes (X0:X1,Y0:Y1[,Z0:Z1]), found {}", axes.size()));
     return axes;
 }
 
 void write_periodic_pairs(io::SceneReader& reader, std::ostream& out, const PeriodicAxes& axes) {
     if (static_cast<int>(axes.size()) != reader.dimension())
-        throw CLI::ValidationError("--periodic", fmt::format("names {} axes but the scene is {}D", axes.size(),
-                                                             reader.dimension()));
+        throw CLI::ValidationError("--periodic",
+                                   fmt::format("names {} axes but the scene is {}D", axes.size(), reader.dimension()));
     if (reader.dimension() == 2)
         write_frames<2>(reader, out, axes);
     else
