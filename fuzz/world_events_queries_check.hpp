@@ -106,9 +106,8 @@ void check_queries(World<Real, Dim>& world, const std::map<BoxId, Box<Real, Dim>
         std::vector<RayHit<Real>> want;
         for (const auto& [id, box] : model)
             if (const std::optional<double> t = ray_entry(ray, box)) want.push_back({id, static_cast<Real>(*t)});
-        std::sort(want.begin(), want.end(), [](const RayHit<Real>& x, const RayHit<Real>& y) {
-            return x.t != y.t ? x.t < y.t : x.id < y.id;
-        });
+        std::sort(want.begin(), want.end(),
+                  [](const RayHit<Real>& x, const RayHit<Real>& y) { return x.t != y.t ? x.t < y.t : x.id < y.id; });
         std::vector<RayHit<Real>> got;
         world.cast_ray(ray, RayHits::all, got);
         if (got != want) broken_event_promise("a ray cast (all hits) differs from brute force");

@@ -14,6 +14,7 @@
 #include "core/settings_check.hpp"
 #include "core/stopwatch.hpp"
 #include "cuts/held_cut_pipeline.hpp"
+#include "periodic/periodic_path.hpp"
 #include "skin/skin_list.hpp"
 #include "smb/candidate_pairs.hpp"
 #include "smb/detector.hpp"
@@ -43,6 +44,9 @@ public:
     /// Where a filtered detection gathers the boxes that can pair, and their indices.
     std::vector<Box<Real, Dim>>& gathered() noexcept { return gathered_; }
     std::vector<std::uint32_t>& gathered_origin() noexcept { return gathered_origin_; }
+    /// The periodic detection (periodic/periodic_path.hpp) and the stats it leaves.
+    PeriodicPath<Real, Dim>& periodic() noexcept { return periodic_; }
+    void set_last_stats(const DetectStats& stats) noexcept { stats_ = stats; }
 
     /// The skin's candidates after the last detection, turned into the caller's indices on the
     /// first call after it (smb/candidate_pairs.hpp).
@@ -64,6 +68,7 @@ public:
         std::vector<Pair>().swap(candidate_pairs_);
         pipeline_.clear();
         skin_.clear();
+        periodic_.clear();
         skin_pause_ = 0;
         retested_ = 0;
         std::vector<Box<Real, Dim>>().swap(gathered_);
@@ -107,7 +112,8 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() +
                (chunk_.capacity() + candidate_pairs_.capacity()) * sizeof(Pair) +
-               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t);
+               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t) +
+               periodic_.bytes_held();
     }
 
 private:
@@ -149,6 +155,7 @@ private:
     bool candidates_ready_ = false;  // candidate_pairs_ and candidate_margin_ are its own
     std::vector<Pair> candidate_pairs_;
     double candidate_margin_ = 0;
+    PeriodicPath<Real, Dim> periodic_;
 };
 
 }  // namespace smb::detail

@@ -23,8 +23,10 @@
 #include "cuts/held_cut_pipeline.hpp"
 #include "filters/world_filters.hpp"
 #include "paper/paper_pipeline.hpp"
+#include "periodic/periodic_path.hpp"
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
+#include "smb/pair_events.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 #include "smb/world.hpp"
@@ -45,12 +47,14 @@ public:
     WorldFilters<Real, Dim>& filters() noexcept { return filters_; }
     const WorldFilters<Real, Dim>& filters() const noexcept { return filters_; }
     HeldPrecision last_precision() const noexcept {
+        if (periodic_engaged_) return periodic_.precision();
         if (filters_.engaged()) return filters_.precision();
         if (settings_.pipeline == Pipeline::persistent_cuts) return persistent_.precision();
         if (stats_.boxes == 0) return HeldPrecision::none;
         return std::is_same_v<Real, float> ? HeldPrecision::floats : HeldPrecision::doubles;
     }
     std::size_t last_retested_pairs() const noexcept {
+        if (periodic_engaged_) return periodic_.retested();
         if (filters_.engaged()) return filters_.retested();
         return settings_.pipeline == Pipeline::persistent_cuts ? persistent_.retested() : 0;
     }
@@ -61,12 +65,15 @@ public:
         persistent_.clear();
         paper_ = PaperPipeline<Real, Dim>(&store_, &settings_);
         filters_.clear();
+        periodic_.clear();
+        periodic_engaged_ = false;
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
         cleared_ = true;
     }
 
     DetectStats detect(const PairSink& sink) {
+        leave_periodic();
         if (filters_.wanted() || filters_.engaged()) [[unlikely]] {
             if (filters_.wanted()) return detect_filtered(sink);
             filters_.disengage();  // the default pipelines were reset when it engaged
@@ -108,6 +115,46 @@ public:
         return stats;
     }
 
+    /// The periodic detection (periodic/periodic_path.hpp) into `pairs`, and `events` (if not
+    /// null) updated with the (a, b) of the pairs before they replace the contents of `pairs`.
+    /// The default pipelines forget their lists when it takes over, as for the filtered path.
+    DetectStats detect_periodic(const PeriodicDomain<Real, Dim>& domain, std::vector<PeriodicPair>& pairs,
+                                PairEvents* events) {
+        check_domain(domain);
+        if (filters_.wanted())
+            throw ArgumentError(
+                "detect(domain, pairs): a periodic detection does not apply filters, static boxes or a predicate, "
+                "and some are in use");
+        const Stopwatch whole;
+        if (filters_.engaged()) filters_.disengage();
+        if (!periodic_engaged_) {
+            persistent_.clear();
+            paper_ = PaperPipeline<Real, Dim>(&store_, &settings_);
+            periodic_engaged_ = true;
+        }
+        // The periodic pipeline sees box i at index i: compacting moves the last boxes into the
+        // holes, which costs them their place in its order, nothing more. The boxes are checked
+        // as they are gathered: a box too large for the domain throws then, and what changed
+        // before (the compaction, the default pipelines forgotten) costs speed, not results.
+        if (store_.has_removals()) store_.compact(store_.slot_count());
+        DetectStats stats;
+        if (events == nullptr) {
+            stats = periodic_.detect(store_.boxes(), store_.ids(), domain, settings_, pairs);
+            finish_for_events();
+        } else {
+            stats = periodic_.detect(store_.boxes(), store_.ids(), domain, settings_, pairs,
+                                     [&](std::span<const Pair> plain) {
+                                         finish_for_events();
+                                         if (cleared_before_detect_) events->replace_all();
+                                         events->update(plain, reinserted_before_detect());
+                                     });
+        }
+        stats.bytes_held = bytes_held();
+        stats.total_seconds = whole.seconds();
+        stats_ = stats;
+        return stats;
+    }
+
     /// Ids removed between the detection before and the last one, and inserted again: new boxes
     /// under old ids, for PairEvents. Empty (and no allocation) in the common case.
     [[nodiscard]] std::vector<BoxId> reinserted_before_detect() const {
@@ -123,7 +170,7 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         // World allocates this state itself, so its own size counts too.
         return sizeof(*this) + store_.bytes_held() + persistent_.bytes_held() + paper_.bytes_held() +
-               filters_.bytes_held() + chunk_.capacity() * sizeof(Pair) +
+               filters_.bytes_held() + periodic_.bytes_held() + chunk_.capacity() * sizeof(Pair) +
                removed_before_detect_.capacity() * sizeof(BoxId);
     }
 
@@ -131,6 +178,7 @@ private:
     /// The detection with filters or statics in use (world_filters.hpp). It compacts the store
     /// on its own, so the default pipelines forget their lists when it takes over.
     DetectStats detect_filtered(const PairSink& sink) {
+        leave_periodic();
         const Stopwatch whole;
         DetectStats stats;
         if (!filters_.engaged()) {
@@ -147,6 +195,14 @@ private:
         return stats;
     }
 
+    /// After periodic detections, an ordinary one starts its pipelines afresh (they were
+    /// cleared when the periodic path took over) and the periodic path gives its memory back.
+    void leave_periodic() {
+        if (!periodic_engaged_) return;
+        periodic_.clear();
+        periodic_engaged_ = false;
+    }
+
     /// For pair events, after a detection that completed: what was removed, or cleared, between
     /// the detection before and this one, whichever path detected.
     void finish_for_events() {
@@ -160,6 +216,8 @@ private:
     HeldCutPipeline<Real, Dim> persistent_;
     PaperPipeline<Real, Dim> paper_{&store_, &settings_};
     WorldFilters<Real, Dim> filters_;
+    PeriodicPath<Real, Dim> periodic_;
+    bool periodic_engaged_ = false;
     std::vector<Pair> chunk_;
     std::vector<BoxId> removed_before_detect_;
     bool cleared_ = false;

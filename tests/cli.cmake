@@ -20,7 +20,7 @@ endif()
 if(TARGET smb_cli)
   find_package(nlohmann_json REQUIRED)
   foreach(name test_cli_pairs test_cli_events test_cli_generate_run test_cli_output_targets test_cli_arguments
-               test_cli_messages test_cli_join)
+               test_cli_messages test_cli_join test_cli_periodic)
     smb_add_gtest(NAME ${name}
       SOURCES ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp
       LIBS smb_io smb_workload nlohmann_json::nlohmann_json)

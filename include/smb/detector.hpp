@@ -15,6 +15,7 @@
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
 #include "smb/pair_events.hpp"
+#include "smb/periodic.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -99,6 +100,20 @@ public:
     /// the pairs it finds (a World also keeps its statics out of its detection: docs/filters.md).
     DetectStats detect(std::span<const box_type> boxes, const DetectFilters& filters, std::vector<Pair>& pairs);
     DetectStats detect(std::span<const box_type> boxes, const DetectFilters& filters, const PairSink& sink);
+
+    /// Periodic detection (smb/periodic.hpp, docs/periodic.md): replaces the contents of `pairs`
+    /// by every pair (a, b, shift) such that box a overlaps box b translated by `shift` periods
+    /// (overlaps_with_shift), each pair once, a < b. Throws ArgumentError for a bad domain and
+    /// InvalidBoxError for a box that is invalid or too large for it (extent not below half the
+    /// period), naming its index, before anything changes. Runs its own cuts (and skin list,
+    /// with a skin) beside the ordinary detection's, so calls with and without a domain may
+    /// alternate on one detector; threads as the settings say.
+    DetectStats detect(std::span<const box_type> boxes, const PeriodicDomain<Real, Dim>& domain,
+                       std::vector<PeriodicPair>& pairs);
+    /// The same, then `events` updated with the (a, b) of the pairs: a pair whose shift changes
+    /// (it crossed the domain's boundary) stays the same contact.
+    DetectStats detect(std::span<const box_type> boxes, const PeriodicDomain<Real, Dim>& domain,
+                       std::vector<PeriodicPair>& pairs, PairEvents& events);
 
     /// Forgets the cuts and the order, and releases the memory held; keeps the settings.
     void clear();

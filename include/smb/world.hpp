@@ -17,6 +17,7 @@
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
 #include "smb/pair_events.hpp"
+#include "smb/periodic.hpp"
 #include "smb/query.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
@@ -124,6 +125,19 @@ public:
     /// same events to every detection: the removals are forgotten by any detection. Whatever
     /// it throws, `pairs` and `events` are as they were.
     DetectStats detect(std::vector<Pair>& pairs, PairEvents& events);
+
+    /// Periodic detection (smb/periodic.hpp, docs/periodic.md): replaces the contents of `pairs`
+    /// by every pair (a, b, shift) of ids such that box a overlaps box b translated by `shift`
+    /// periods (overlaps_with_shift), each pair once, a < b. Throws ArgumentError for a bad
+    /// domain or while filters, static boxes or a predicate are in use (a periodic detection
+    /// does not apply them), and InvalidBoxError naming the first box too large for the domain
+    /// (extent not below half the period), before anything changes; PairLimitError as
+    /// detect(pairs). The domain may change from one call to the next; detections with and
+    /// without a domain may alternate (each switch starts the other's cuts afresh).
+    DetectStats detect(const PeriodicDomain<Real, Dim>& domain, std::vector<PeriodicPair>& pairs);
+    /// The same, then `events` updated with the (a, b) of the pairs, as detect(pairs, events):
+    /// a pair whose shift changes (it crossed the domain's boundary) stays the same contact.
+    DetectStats detect(const PeriodicDomain<Real, Dim>& domain, std::vector<PeriodicPair>& pairs, PairEvents& events);
 
     // Filters and static boxes (smb/filter.hpp, docs/filters.md). A box inserted has the
     // default filter and is not static; removing it forgets both. Once any filter differs

@@ -17,6 +17,7 @@
 #include "frame_diff.hpp"
 #include "option_checks.hpp"
 #include "pair_csv.hpp"
+#include "periodic_pairs.hpp"
 #include "scene_csv.hpp"
 #include "smb/pair_events.hpp"
 #include "smb/world.hpp"
@@ -124,9 +125,21 @@ PairsCommand::PairsCommand(CLI::App& parent)
                      "is sorted through temporary files")
         ->check(at_least(2))
         ->capture_default_str();
-    app_->add_flag("--events", events_,
-                   "write the pairs that begin and end overlapping at each frame, as an event CSV, "
-                   "instead of the pairs; holds a frame's pairs in memory");
+    auto* events = app_->add_flag("--events", events_,
+                                  "write the pairs that begin and end overlapping at each frame, as an event "
+                                  "CSV, instead of the pairs; holds a frame's pairs in memory");
+    app_->add_option("--periodic", periodic_,
+                     "X0:X1,Y0:Y1[,Z0:Z1]: the axes wrap around over [X0, X1) and so on ('-': an axis that "
+                     "does not); writes the periodic pair CSV, with each pair's image shift")
+        ->check([](const std::string& text) {
+            try {
+                (void)parse_periodic_axes(text);
+            } catch (const std::invalid_argument& problem) {
+                return std::string(problem.what());
+            }
+            return std::string();
+        })
+        ->excludes(events);
     app_->footer([] {
         return fmt::format(
             "Scene CSV: header {} (3D) or {} (2D); one row per box per frame, frame numbers "
@@ -137,6 +150,9 @@ PairsCommand::PairsCommand(CLI::App& parent)
             "this frame and did not at the frame before) or end (the other way round; a removed box "
             "ends its pairs, the first skipped frame number ends every pair); every pair of the "
             "first frame begins; sorted by (frame, a, b, event).\n"
+            "Periodic pair CSV (--periodic): header frame,a,b,sx,sy[,sz]; s is the image shift of b "
+            "relative to a (a overlaps b translated by s periods; 0 on an axis that is not periodic); "
+            "a box's extent on a periodic axis must be below half the period; sorted by (frame, a, b).\n"
             "A malformed line stops the run with 'file:line: problem' on standard error.\n",
             io::scene_header(3), io::scene_header(2));
     });
@@ -152,7 +168,9 @@ int PairsCommand::run() const {
     io::SceneReader reader(input.stream(), input.name());
     io::OutputFile output(output_);
     try {
-        if (events_) {
+        if (!periodic_.empty()) {
+            write_periodic_pairs(reader, output.stream(), parse_periodic_axes(periodic_));
+        } else if (events_) {
             if (reader.dimension() == 2) {
                 write_events_of_every_frame<2>(reader, output.stream());
             } else {

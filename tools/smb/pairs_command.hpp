@@ -23,6 +23,7 @@ private:
     std::string output_ = "-";
     std::size_t pairs_in_memory_ = std::size_t{1} << 24;  ///< 256 MiB of pairs
     bool events_ = false;                                 ///< the event CSV instead of the pair CSV
+    std::string periodic_;                                ///< --periodic X0:X1,Y0:Y1[,Z0:Z1]: the periodic pair CSV
 };
 
 }  // namespace smb::cli
