@@ -11,7 +11,10 @@
 //   layers       twice the moving boxes in one cube, as two layers (categories 1 and 2, each
 //                with the mask of its own) that ignore each other; beside it the same boxes
 //                with no filters, and one layer alone
-// Usage: smb_static_compare [--moving N] [--statics N] [--steps S]
+// Usage: smb_static_compare [--moving N] [--statics N] [--steps S] [--paired]
+//   --paired     only the plain and statics scenes, in lockstep: each step runs both worlds,
+//                in alternating order, so that the load of a shared machine falls on both
+//                alike; prints their medians and the median of the per-step ratios
 
 #include <algorithm>
 #include <chrono>
@@ -103,17 +106,80 @@ void print(const char* scene, const Timing& t) {
     std::fflush(stdout);
 }
 
+/// The statics scene: `statics` boxes of a second placement (seed 2) around the cube of `env`,
+/// with ids from 2^40 up, inserted in `world` and made static. Returns the seconds the insert
+/// and set_static took.
+double insert_statics(const Env& env, std::size_t statics, World& world) {
+    const Env placement(params(statics, 2));
+    const double offset = 0.5 * (placement.cube_side() - env.cube_side());
+    std::vector<smb::Box3d> boxes(placement.boxes().begin(), placement.boxes().end());
+    for (smb::Box3d& b : boxes) {
+        for (int k = 0; k < 3; ++k) {
+            b.min[k] -= offset;
+            b.max[k] -= offset;
+        }
+    }
+    std::vector<BoxId> ids(boxes.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = (BoxId{1} << 40) + i;
+    const auto start = Clock::now();
+    world.insert(ids, boxes);
+    world.set_static(ids, true);
+    return since(start);
+}
+
+/// The plain and statics scenes in lockstep (--paired).
+int run_paired(std::size_t moving, std::size_t statics, int steps) {
+    Env plain_env(params(moving, 1));
+    Env statics_env(params(moving, 1));
+    World plain;
+    World with_statics;
+    insert_statics(statics_env, statics, with_statics);
+    std::vector<smb::Pair> pairs;
+    std::vector<double> plain_times, statics_times, ratios;
+    std::size_t plain_pairs = 0, statics_pairs = 0;
+    for (int s = -1; s < steps; ++s) {
+        const bool first = s < 0;
+        const auto& plain_changes = first ? plain_env.changes() : plain_env.step();
+        const auto& statics_changes = first ? statics_env.changes() : statics_env.step();
+        double times[2] = {0, 0};
+        for (int turn = 0; turn < 2; ++turn) {
+            const bool do_plain = (turn == 0) == (s % 2 == 0);
+            World& world = do_plain ? plain : with_statics;
+            pairs.clear();
+            const auto start = Clock::now();
+            smb::workload::apply_changes(do_plain ? plain_changes : statics_changes, world);
+            world.detect(pairs);
+            times[do_plain ? 0 : 1] = since(start);
+            (do_plain ? plain_pairs : statics_pairs) = pairs.size();
+        }
+        if (first) continue;
+        plain_times.push_back(times[0]);
+        statics_times.push_back(times[1]);
+        ratios.push_back(times[1] / times[0]);
+    }
+    std::printf(
+        "paired, %d steps, alternating order: plain %.2f ms (%zu pairs), moving + statics %.2f ms (%zu pairs),"
+        " ratio of medians %.2f, median of per-step ratios %.2f\n",
+        steps, median(plain_times) * 1e3, plain_pairs, median(statics_times) * 1e3, statics_pairs,
+        median(statics_times) / median(plain_times), median(ratios));
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     std::size_t moving = 100000;
     std::size_t statics = 1000000;
+    bool paired = false;
     int steps = 10;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (std::strcmp(argv[i], "--moving") == 0) moving = std::strtoull(argv[i + 1], nullptr, 10);
-        if (std::strcmp(argv[i], "--statics") == 0) statics = std::strtoull(argv[i + 1], nullptr, 10);
-        if (std::strcmp(argv[i], "--steps") == 0) steps = std::atoi(argv[i + 1]);
+    for (int i = 1; i < argc; ++i) {
+        const bool value = i + 1 < argc;
+        if (std::strcmp(argv[i], "--paired") == 0) paired = true;
+        if (value && std::strcmp(argv[i], "--moving") == 0) moving = std::strtoull(argv[++i], nullptr, 10);
+        if (value && std::strcmp(argv[i], "--statics") == 0) statics = std::strtoull(argv[++i], nullptr, 10);
+        if (value && std::strcmp(argv[i], "--steps") == 0) steps = std::atoi(argv[++i]);
     }
+    if (paired) return run_paired(moving, statics, steps);
     auto nothing = [](std::span<const BoxId>) {};
     std::printf("moving %zu, statics %zu, steps %d (World<double, 3>; times in ms; first = load + detect)\n\n", moving,
                 statics, steps);
@@ -140,23 +206,10 @@ int main(int argc, char** argv) {
     // The same moving boxes in the middle of a second, static placement.
     {
         Env env(params(moving, 1));
-        const Env placement(params(statics, 2));
-        const double offset = 0.5 * (placement.cube_side() - env.cube_side());
-        std::vector<smb::Box3d> boxes(placement.boxes().begin(), placement.boxes().end());
-        for (smb::Box3d& b : boxes) {
-            for (int k = 0; k < 3; ++k) {
-                b.min[k] -= offset;
-                b.max[k] -= offset;
-            }
-        }
-        std::vector<BoxId> ids(boxes.size());
-        for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = (BoxId{1} << 40) + i;
         World world;
-        const auto start = Clock::now();
-        world.insert(ids, boxes);
-        world.set_static(ids, true);
-        std::printf("| %-28s | %9zu | %9s | %9.1f | %9s | %9s | %7s | %9s | %9s |\n", "(statics inserted)", ids.size(),
-                    "", since(start) * 1e3, "", "", "", "", "");
+        const double inserted = insert_statics(env, statics, world);
+        std::printf("| %-28s | %9zu | %9s | %9.1f | %9s | %9s | %7s | %9s | %9s |\n", "(statics inserted)", statics, "",
+                    inserted * 1e3, "", "", "", "", "");
         print("moving + statics", run(env, world, steps, nothing));
     }
 
