@@ -11,10 +11,20 @@
 //   layers       twice the moving boxes in one cube, as two layers (categories 1 and 2, each
 //                with the mask of its own) that ignore each other; beside it the same boxes
 //                with no filters, and one layer alone
-// Usage: smb_static_compare [--moving N] [--statics N] [--steps S]
+// Usage: smb_static_compare [--moving N] [--statics N] [--steps S] [--paired [--terrain]]
+//   --paired     only the plain and statics scenes, in lockstep: each step runs both worlds,
+//                in alternating order, so that the load of a shared machine falls on both
+//                alike; prints their medians and the median of the per-step ratios
+//   --terrain    with --paired, the statics are a terrain instead of a second placement: a
+//                height field of N boxes (a square grid of cells as wide as a moving box on
+//                average, each cell's box spanning the heights of its corners, as a mesh's
+//                triangles would), centred under the moving cube and far wider than it, its mean
+//                height in the middle of the cube: the moving boxes near the surface meet it,
+//                the others (most) meet no static
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -103,17 +113,121 @@ void print(const char* scene, const Timing& t) {
     std::fflush(stdout);
 }
 
+/// The statics scene: `statics` boxes of a second placement (seed 2) around the cube of `env`,
+/// with ids from 2^40 up, inserted in `world` and made static. Returns the seconds the insert
+/// and set_static took.
+double insert_statics(const Env& env, std::size_t statics, World& world) {
+    const Env placement(params(statics, 2));
+    const double offset = 0.5 * (placement.cube_side() - env.cube_side());
+    std::vector<smb::Box3d> boxes(placement.boxes().begin(), placement.boxes().end());
+    for (smb::Box3d& b : boxes) {
+        for (int k = 0; k < 3; ++k) {
+            b.min[k] -= offset;
+            b.max[k] -= offset;
+        }
+    }
+    std::vector<BoxId> ids(boxes.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = (BoxId{1} << 40) + i;
+    const auto start = Clock::now();
+    world.insert(ids, boxes);
+    world.set_static(ids, true);
+    return since(start);
+}
+
+/// The terrain scene (--terrain): `statics` boxes on a square grid of cells as wide as the mean
+/// moving box (L (E / N)^(1/3) for the cube [0, L]^3 of N boxes at density E), centred under the
+/// cube; the height is L/2 + (L/8) sin(3 pi x / L) cos(3 pi y / L) (waves two thirds of the cube
+/// long), each cell's box spanning the heights of its four corners.
+double insert_terrain(const Env& env, std::size_t moving, std::size_t statics, World& world) {
+    const double side = env.cube_side();
+    const auto n = static_cast<std::size_t>(std::sqrt(static_cast<double>(statics)));
+    const double cell = side * std::cbrt(0.4 / static_cast<double>(moving));
+    const double across = cell * static_cast<double>(n);
+    const double pi = 3.14159265358979323846;
+    const auto height = [&](double x, double y) {
+        return 0.5 * side + 0.125 * side * std::sin(3 * pi * x / side) * std::cos(3 * pi * y / side);
+    };
+    std::vector<smb::Box3d> boxes;
+    boxes.reserve(n * n);
+    for (std::size_t j = 0; j < n; ++j) {
+        for (std::size_t i = 0; i < n; ++i) {
+            const double x0 = 0.5 * (side - across) + cell * static_cast<double>(i);
+            const double y0 = 0.5 * (side - across) + cell * static_cast<double>(j);
+            const double h[4] = {height(x0, y0), height(x0 + cell, y0), height(x0, y0 + cell),
+                                 height(x0 + cell, y0 + cell)};
+            smb::Box3d b;
+            b.min = {x0, y0, *std::min_element(h, h + 4)};
+            b.max = {x0 + cell, y0 + cell, *std::max_element(h, h + 4)};
+            boxes.push_back(b);
+        }
+    }
+    std::vector<BoxId> ids(boxes.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = (BoxId{1} << 40) + i;
+    const auto start = Clock::now();
+    world.insert(ids, boxes);
+    world.set_static(ids, true);
+    return since(start);
+}
+
+/// The plain and statics scenes in lockstep (--paired).
+int run_paired(std::size_t moving, std::size_t statics, int steps, bool terrain) {
+    Env plain_env(params(moving, 1));
+    Env statics_env(params(moving, 1));
+    World plain;
+    World with_statics;
+    if (terrain) {
+        insert_terrain(statics_env, moving, statics, with_statics);
+    } else {
+        insert_statics(statics_env, statics, with_statics);
+    }
+    std::vector<smb::Pair> pairs;
+    std::vector<double> plain_times, statics_times, ratios;
+    std::size_t plain_pairs = 0, statics_pairs = 0;
+    for (int s = -1; s < steps; ++s) {
+        const bool first = s < 0;
+        const auto& plain_changes = first ? plain_env.changes() : plain_env.step();
+        const auto& statics_changes = first ? statics_env.changes() : statics_env.step();
+        double times[2] = {0, 0};
+        for (int turn = 0; turn < 2; ++turn) {
+            const bool do_plain = (turn == 0) == (s % 2 == 0);
+            World& world = do_plain ? plain : with_statics;
+            pairs.clear();
+            const auto start = Clock::now();
+            smb::workload::apply_changes(do_plain ? plain_changes : statics_changes, world);
+            world.detect(pairs);
+            times[do_plain ? 0 : 1] = since(start);
+            (do_plain ? plain_pairs : statics_pairs) = pairs.size();
+        }
+        if (first) continue;
+        plain_times.push_back(times[0]);
+        statics_times.push_back(times[1]);
+        ratios.push_back(times[1] / times[0]);
+    }
+    std::printf(
+        "paired%s, %d steps, alternating order: plain %.2f ms (%zu pairs), moving + statics %.2f ms (%zu pairs),"
+        " ratio of medians %.2f, median of per-step ratios %.2f\n",
+        terrain ? " (terrain)" : "", steps, median(plain_times) * 1e3, plain_pairs, median(statics_times) * 1e3,
+        statics_pairs, median(statics_times) / median(plain_times), median(ratios));
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     std::size_t moving = 100000;
     std::size_t statics = 1000000;
+    bool paired = false;
+    bool terrain = false;
     int steps = 10;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (std::strcmp(argv[i], "--moving") == 0) moving = std::strtoull(argv[i + 1], nullptr, 10);
-        if (std::strcmp(argv[i], "--statics") == 0) statics = std::strtoull(argv[i + 1], nullptr, 10);
-        if (std::strcmp(argv[i], "--steps") == 0) steps = std::atoi(argv[i + 1]);
+    for (int i = 1; i < argc; ++i) {
+        const bool value = i + 1 < argc;
+        if (std::strcmp(argv[i], "--paired") == 0) paired = true;
+        if (std::strcmp(argv[i], "--terrain") == 0) terrain = true;
+        if (value && std::strcmp(argv[i], "--moving") == 0) moving = std::strtoull(argv[++i], nullptr, 10);
+        if (value && std::strcmp(argv[i], "--statics") == 0) statics = std::strtoull(argv[++i], nullptr, 10);
+        if (value && std::strcmp(argv[i], "--steps") == 0) steps = std::atoi(argv[++i]);
     }
+    if (paired) return run_paired(moving, statics, steps, terrain);
     auto nothing = [](std::span<const BoxId>) {};
     std::printf("moving %zu, statics %zu, steps %d (World<double, 3>; times in ms; first = load + detect)\n\n", moving,
                 statics, steps);
@@ -140,23 +254,10 @@ int main(int argc, char** argv) {
     // The same moving boxes in the middle of a second, static placement.
     {
         Env env(params(moving, 1));
-        const Env placement(params(statics, 2));
-        const double offset = 0.5 * (placement.cube_side() - env.cube_side());
-        std::vector<smb::Box3d> boxes(placement.boxes().begin(), placement.boxes().end());
-        for (smb::Box3d& b : boxes) {
-            for (int k = 0; k < 3; ++k) {
-                b.min[k] -= offset;
-                b.max[k] -= offset;
-            }
-        }
-        std::vector<BoxId> ids(boxes.size());
-        for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = (BoxId{1} << 40) + i;
         World world;
-        const auto start = Clock::now();
-        world.insert(ids, boxes);
-        world.set_static(ids, true);
-        std::printf("| %-28s | %9zu | %9s | %9.1f | %9s | %9s | %7s | %9s | %9s |\n", "(statics inserted)", ids.size(),
-                    "", since(start) * 1e3, "", "", "", "", "");
+        const double inserted = insert_statics(env, statics, world);
+        std::printf("| %-28s | %9zu | %9s | %9.1f | %9s | %9s | %7s | %9s | %9s |\n", "(statics inserted)", statics, "",
+                    inserted * 1e3, "", "", "", "", "");
         print("moving + statics", run(env, world, steps, nothing));
     }
 

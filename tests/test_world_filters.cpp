@@ -365,6 +365,54 @@ TEST(WorldFilters, StaticsNeverPairAndUnmovedStaticsAreNotIndexedAgain) {
     EXPECT_TRUE(pairs.empty());
 }
 
+TEST(WorldFilters, StaticsTouchingWithinAFloatOfAMovingBoxPairExactly) {
+    // The moving boxes test their cached statics as floats rounded outward and go to the exact
+    // boxes only where the float test cannot tell: faces that meet, or miss by a double's ulp,
+    // at coordinates no float holds, on every axis and both sides.
+    World3d world;
+    BoxId id = 0;
+    std::vector<Pair> expected;
+    for (int k = 0; k < 3; ++k) {
+        for (int i = 0; i < 40; ++i) {
+            const double x = 0.1 + 0.37 * i + 1e-9 * k;  // not a float
+            for (const int side : {-1, 1}) {
+                for (const int steps : {-2, -1, 0, 1, 2}) {
+                    double face = x;  // the moving box's face, `steps` ulps from the static's
+                    for (int s = 0; s < std::abs(steps); ++s) face = std::nextafter(face, steps > 0 ? 1e9 : -1e9);
+                    Box3d fixed{{0, 0, 0}, {1, 1, 1}};
+                    Box3d moving{{0, 0, 0}, {1, 1, 1}};
+                    const double offset = 20.0 * static_cast<double>(id + 1);  // apart from the others on another axis
+                    const int other = (k + 1) % 3;
+                    fixed.min[other] = moving.min[other] = offset;
+                    fixed.max[other] = moving.max[other] = offset + 1;
+                    // side 1: the static below x, the moving box from `face` up; side -1 mirrored.
+                    const bool meet = side > 0 ? steps <= 0 : steps >= 0;
+                    if (side > 0) {
+                        fixed.min[k] = x - 1;
+                        fixed.max[k] = x;
+                        moving.min[k] = face;
+                        moving.max[k] = face + 1;
+                    } else {
+                        fixed.min[k] = x;
+                        fixed.max[k] = x + 1;
+                        moving.min[k] = face - 1;
+                        moving.max[k] = face;
+                    }
+                    world.insert(id, fixed);
+                    world.set_static(id, true);
+                    world.insert(id + 1, moving);
+                    if (meet) expected.push_back({id, id + 1});
+                    id += 2;
+                }
+            }
+        }
+    }
+    std::vector<Pair> pairs;
+    world.detect(pairs);
+    sort_pairs(pairs);
+    EXPECT_EQ(pairs, expected);
+}
+
 TEST(WorldFilters, FlagsChangedBeforeTheDefaultPathCompactsNameNoStaleSlot) {
     // Box 0 turns static and dynamic again while box 50, before it in the store, is removed; a
     // default detection compacts the store; a filter then engages the filtered path, which must
