@@ -63,7 +63,9 @@ using PeriodicDomain3d = PeriodicDomain<double, 3>;
 /// shift[k] periods on every axis k (see overlaps_with_shift). a < b. shift[k] is 0 on an axis
 /// that is not periodic, and beyond the dimension (shift[2] in 2D). Where every box's min lies
 /// in [lo, hi) on a periodic axis (a wrapped particle whose box sticks out of the domain by
-/// less than half a period), the shift on it is -1, 0 or +1.
+/// less than half a period), the shift on it is -1, 0 or +1. Each pair is reported once: where
+/// the rounding of the translation lets it pass under two neighbouring shifts (both extents
+/// within a few rounding steps of half the period), the one nearer 0 on every axis is reported.
 struct PeriodicPair {
     BoxId a = 0;
     BoxId b = 0;

@@ -72,6 +72,7 @@ public:
             for (auto& s : shift) s = -s;
         }
         if (!overlaps_with_shift(boxes_[first], boxes_[second], shift, domain_)) return;
+        if (nearer_shift_overlaps(boxes_[first], boxes_[second], shift)) return;
         emit(a, b, shift);
     }
 
@@ -80,6 +81,22 @@ public:
     }
 
 private:
+    /// Whether the pair also overlaps under the shift one step nearer 0 on some axis. Only
+    /// rounding allows two shifts (both extents within a few rounding steps of half the period),
+    /// and then the one nearest 0 on every axis is the pair's: the pairs of untranslated boxes,
+    /// reported with the shift 0 unchecked, keep theirs.
+    [[nodiscard]] bool nearer_shift_overlaps(const box_type& a, const box_type& b,
+                                             const std::array<std::int32_t, 3>& shift) const noexcept {
+        for (int k = 0; k < Dim; ++k) {
+            const auto ks = static_cast<std::size_t>(k);
+            if (shift[ks] == 0) continue;
+            std::array<std::int32_t, 3> nearer = shift;
+            nearer[ks] += shift[ks] > 0 ? -1 : 1;
+            if (overlaps_with_shift(a, b, nearer, domain_)) return true;
+        }
+        return false;
+    }
+
     /// One box of a pair: the caller's box, its name, and how its gathered box was translated.
     struct Side {
         std::uint32_t owner;

@@ -30,6 +30,17 @@ std::vector<PeriodicPair> brute_force_periodic_pairs(std::span<const Box<Real, D
                                                      const PeriodicDomain<Real, Dim>& domain) {
     std::vector<PeriodicPair> pairs;
     auto name = [&](std::size_t i) { return names.empty() ? static_cast<BoxId>(i) : names[i]; };
+    // Where rounding lets two neighbouring shifts pass, the one nearer 0 on every axis is the
+    // pair's (smb/periodic.hpp).
+    auto nearer_overlaps = [&](const Box<Real, Dim>& a, const Box<Real, Dim>& b, std::array<std::int32_t, 3> shift) {
+        for (int k = 0; k < Dim; ++k) {
+            if (shift[k] == 0) continue;
+            std::array<std::int32_t, 3> nearer = shift;
+            nearer[k] -= shift[k] > 0 ? 1 : -1;
+            if (overlaps_with_shift(a, b, nearer, domain)) return true;
+        }
+        return false;
+    };
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         for (std::size_t j = i + 1; j < boxes.size(); ++j) {
             std::size_t x = i;
@@ -55,7 +66,7 @@ std::vector<PeriodicPair> brute_force_periodic_pairs(std::span<const Box<Real, D
                     if (!domain.periodic[k] && d != 0) skip = true;
                     shift[k] = domain.periodic[k] ? centre[k] + d : 0;
                 }
-                if (!skip && overlaps_with_shift(a, b, shift, domain))
+                if (!skip && overlaps_with_shift(a, b, shift, domain) && !nearer_overlaps(a, b, shift))
                     pairs.push_back(PeriodicPair{name(x), name(y), shift});
             }
         }
