@@ -11,19 +11,14 @@
 #include <optional>
 #include <set>
 #include <span>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
+#include "operation_input.hpp"
 #include "smb/pair_events.hpp"
 #include "smb/query.hpp"
 #include "smb/world.hpp"
 
 namespace smb::fuzz::world_ops_detail {
-
-[[noreturn]] inline void broken_event_promise(const char* what) {
-    throw std::logic_error(std::string("world operations: ") + what);
-}
 
 /// The events a World's detection owes: the list of the previous detection with events, and
 /// what happened to the ids since the last completed detection of any kind (which is all a
@@ -57,8 +52,8 @@ public:
         const auto same = [](std::span<const Pair> got, const std::vector<Pair>& want) {
             return std::equal(got.begin(), got.end(), want.begin(), want.end());
         };
-        if (!same(events.begun(), begun)) broken_event_promise("the begun pairs differ from the model");
-        if (!same(events.ended(), ended)) broken_event_promise("the ended pairs differ from the model");
+        if (!same(events.begun(), begun)) broken_promise("the begun pairs differ from the model");
+        if (!same(events.ended(), ended)) broken_promise("the ended pairs differ from the model");
         previous_ = now;
         forget_removals();
     }
@@ -88,13 +83,13 @@ void check_queries(World<Real, Dim>& world, const std::map<BoxId, Box<Real, Dim>
             if (overlaps(queries[q], box)) want.push_back(id);
         world.query(queries[q], found);
         std::sort(found.begin(), found.end());
-        if (found != want) broken_event_promise("a box query differs from brute force");
+        if (found != want) broken_promise("a box query differs from brute force");
         for (const BoxId id : want) want_hits.push_back({q, id});
     }
     std::vector<QueryHit> hits;
     world.query(std::span<const BoxT>(queries), hits);
     std::sort(hits.begin(), hits.end());
-    if (hits != want_hits) broken_event_promise("a batch query differs from brute force");
+    if (hits != want_hits) broken_promise("a batch query differs from brute force");
 
     for (const BoxT& from : queries) {
         Ray<Real, Dim> ray;
@@ -110,10 +105,10 @@ void check_queries(World<Real, Dim>& world, const std::map<BoxId, Box<Real, Dim>
                   [](const RayHit<Real>& x, const RayHit<Real>& y) { return x.t != y.t ? x.t < y.t : x.id < y.id; });
         std::vector<RayHit<Real>> got;
         world.cast_ray(ray, RayHits::all, got);
-        if (got != want) broken_event_promise("a ray cast (all hits) differs from brute force");
+        if (got != want) broken_promise("a ray cast (all hits) differs from brute force");
         world.cast_ray(ray, RayHits::nearest, got);
         if (want.size() > 1) want.resize(1);
-        if (got != want) broken_event_promise("a ray cast (nearest) differs from brute force");
+        if (got != want) broken_promise("a ray cast (nearest) differs from brute force");
     }
 }
 
