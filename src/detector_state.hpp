@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -44,8 +45,12 @@ public:
     /// Where a filtered detection gathers the boxes that can pair, and their indices.
     std::vector<Box<Real, Dim>>& gathered() noexcept { return gathered_; }
     std::vector<std::uint32_t>& gathered_origin() noexcept { return gathered_origin_; }
-    /// The periodic detection (periodic/periodic_path.hpp) and the stats it leaves.
-    PeriodicPath<Real, Dim>& periodic() noexcept { return periodic_; }
+    /// The periodic detection (periodic/periodic_path.hpp), made on the first periodic call so
+    /// that a detector that never uses one stays small.
+    PeriodicPath<Real, Dim>& periodic() {
+        if (!periodic_) periodic_ = std::make_unique<PeriodicPath<Real, Dim>>();
+        return *periodic_;
+    }
     void set_last_stats(const DetectStats& stats) noexcept { stats_ = stats; }
 
     /// The skin's candidates after the last detection, turned into the caller's indices on the
@@ -68,7 +73,7 @@ public:
         std::vector<Pair>().swap(candidate_pairs_);
         pipeline_.clear();
         skin_.clear();
-        periodic_.clear();
+        periodic_.reset();
         skin_pause_ = 0;
         retested_ = 0;
         std::vector<Box<Real, Dim>>().swap(gathered_);
@@ -113,7 +118,7 @@ public:
         return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() +
                (chunk_.capacity() + candidate_pairs_.capacity()) * sizeof(Pair) +
                gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t) +
-               periodic_.bytes_held();
+               (periodic_ ? sizeof(PeriodicPath<Real, Dim>) + periodic_->bytes_held() : 0);
     }
 
 private:
@@ -155,7 +160,7 @@ private:
     bool candidates_ready_ = false;  // candidate_pairs_ and candidate_margin_ are its own
     std::vector<Pair> candidate_pairs_;
     double candidate_margin_ = 0;
-    PeriodicPath<Real, Dim> periodic_;
+    std::unique_ptr<PeriodicPath<Real, Dim>> periodic_;
 };
 
 }  // namespace smb::detail
