@@ -8,7 +8,7 @@
 // canonical box meets another canonical box under a shift of -1, 0 or +1 periods only, and under
 // +1 only if it reaches hi. So a box that reaches hi also gets an image translated by -P on that
 // axis, and one for every combination of the axes where it reaches hi (up to 7 images in 3D).
-// An image is named by its owner and its mask u (bit k: translated by -P on axis k). A pair of
+// An image is named by its source and its mask u (bit k: translated by -P on axis k). A pair of
 // gathered boxes (x, u) and (y, v) stands for y's shift n_x - n_y + u - v relative to x. Every
 // true overlap is found as exactly one (u, v) with u & v == 0 on every axis (periodic_report.hpp
 // drops the others: (1, 1) repeats (0, 0)).
@@ -22,7 +22,7 @@
 // (n = 0 on every axis: the common case) is gathered exactly as it is, and its key names it
 // without a memory read: its index, or, where the caller names boxes by ids below 2^32, the id
 // and the index packed together. A pair of two such keys needs no decoding and no confirmation.
-// A translated box or an image has kTranslatedKey set and the index of its record (owner, mask,
+// A translated box or an image has kTranslatedKey set and the index of its record (source, mask,
 // wrap) below it.
 //
 // One pass over the caller's boxes checks them (as checked_bounds does, and each extent against
@@ -63,9 +63,9 @@ public:
     using box_type = Box<Real, Dim>;
     using Wrap = std::array<std::int32_t, Dim>;
 
-    /// A translated box or an image: the caller's box `owner`, translated by -(wrap + mask) P.
+    /// A translated box or an image: the caller's box `source`, translated by -(wrap + mask) P.
     struct Record {
-        std::uint32_t owner;
+        std::uint32_t source;
         std::uint8_t mask;
         Wrap wrap;
     };

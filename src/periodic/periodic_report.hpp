@@ -7,7 +7,7 @@
 // Two boxes gathered as they are (keys without kTranslatedKey) overlap exactly as the caller's
 // boxes do, under the shift 0: reported at once, without reading memory where the keys hold
 // the names. Any other pair is
-// decoded to (owner, mask) on both sides: the same owner (a box and its own image, which never
+// decoded to (source, mask) on both sides: the same source (a box and its own image, which never
 // overlap in truth) and masks that share an axis (a repeat of a pair found without both images)
 // are dropped; the rest are confirmed on the caller's boxes with overlaps_with_shift, since
 // the gathered boxes were grown to cover the rounding of their translation.
@@ -54,7 +54,7 @@ public:
         }
         const Side sx = side(x);
         const Side sy = side(y);
-        if (sx.owner == sy.owner || (sx.mask & sy.mask) != 0) return;
+        if (sx.source == sy.source || (sx.mask & sy.mask) != 0) return;
         // y's shift relative to x: n_x - n_y + u - v on every periodic axis.
         std::array<std::int32_t, 3> shift{};
         for (int k = 0; k < Dim; ++k) {
@@ -64,8 +64,8 @@ public:
         }
         BoxId a = sx.name;
         BoxId b = sy.name;
-        std::uint32_t first = sx.owner;
-        std::uint32_t second = sy.owner;
+        std::uint32_t first = sx.source;
+        std::uint32_t second = sy.source;
         if (b < a) {
             std::swap(a, b);
             std::swap(first, second);
@@ -99,7 +99,7 @@ private:
 
     /// One box of a pair: the caller's box, its name, and how its gathered box was translated.
     struct Side {
-        std::uint32_t owner;
+        std::uint32_t source;
         BoxId name;
         std::uint8_t mask;
         typename PeriodicImages<Real, Dim>::Wrap wrap;
@@ -112,12 +112,12 @@ private:
 
     [[nodiscard]] Side side(BoxId key) const noexcept {
         if ((key & kTranslatedKey) == 0) {
-            const auto owner = static_cast<std::uint32_t>(packed_ ? key & kIndexMask : key);
-            return Side{owner, plain_name(key), 0, {}};
+            const auto source = static_cast<std::uint32_t>(packed_ ? key & kIndexMask : key);
+            return Side{source, plain_name(key), 0, {}};
         }
         const auto& record = images_.record(key);
-        const BoxId name = names_.empty() ? record.owner : names_[record.owner];
-        return Side{record.owner, name, record.mask, record.wrap};
+        const BoxId name = names_.empty() ? record.source : names_[record.source];
+        return Side{record.source, name, record.mask, record.wrap};
     }
 
     void emit(BoxId a, BoxId b, const std::array<std::int32_t, 3>& shift) {
