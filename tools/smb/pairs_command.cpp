@@ -14,11 +14,11 @@
 
 #include "event_csv.hpp"
 #include "file_streams.hpp"
-#include "frame_diff.hpp"
 #include "option_checks.hpp"
 #include "pair_csv.hpp"
 #include "periodic_pairs.hpp"
 #include "scene_csv.hpp"
+#include "scene_follower.hpp"
 #include "smb/pair_events.hpp"
 #include "smb/world.hpp"
 #include "spilling_pair_sorter.hpp"
@@ -36,29 +36,10 @@ void write_pairs_of_every_frame(io::SceneReader& reader, std::ostream& out, std:
     World<double, Dim> world;
     io::SpillingPairSorter sorter(pairs_in_memory);
     io::PairWriter writer(out);
-    io::SceneFrame<Dim> frame;
-    io::FrameChanges<Dim> changes;
-    std::vector<BoxId> previous_ids;
-    bool first_frame = true;
-    std::uint64_t previous_number = 0;
-
-    while (reader.read_frame(frame)) {
-        // A skipped frame number is an empty frame: everything was deleted in between.
-        if (!first_frame && frame.number > previous_number + 1) {
-            world.clear();
-            previous_ids.clear();
-        }
-        io::diff_frames<Dim>(previous_ids, frame, changes);
-        world.remove(changes.removed_ids);
-        world.update(changes.updated_ids, changes.updated_boxes);
-        world.insert(changes.inserted_ids, changes.inserted_boxes);
-
+    io::SceneFollower<Dim> scene(reader);
+    while (scene.advance(world)) {
         world.detect([&](std::span<const Pair> chunk) { sorter.add(chunk); });
-        sorter.finish([&](std::span<const Pair> sorted) { writer.write_frame(frame.number, sorted); });
-
-        previous_ids.swap(frame.ids);
-        previous_number = frame.number;
-        first_frame = false;
+        sorter.finish([&](std::span<const Pair> sorted) { writer.write_frame(scene.frame_number(), sorted); });
     }
     writer.flush();
 }
@@ -72,11 +53,7 @@ void write_events_of_every_frame(io::SceneReader& reader, std::ostream& out) {
     PairEvents events;
     std::vector<Pair> pairs;
     io::EventWriter writer(out);
-    io::SceneFrame<Dim> frame;
-    io::FrameChanges<Dim> changes;
-    std::vector<BoxId> previous_ids;
-    bool first_frame = true;
-    std::uint64_t previous_number = 0;
+    io::SceneFollower<Dim> scene(reader);
 
     const auto detect = [&](std::uint64_t number) {
         pairs.clear();
@@ -89,22 +66,7 @@ void write_events_of_every_frame(io::SceneReader& reader, std::ostream& out) {
         }
         writer.write_frame(number, events.begun(), events.ended());
     };
-    while (reader.read_frame(frame)) {
-        if (!first_frame && frame.number > previous_number + 1) {
-            world.clear();
-            previous_ids.clear();
-            detect(previous_number + 1);
-        }
-        io::diff_frames<Dim>(previous_ids, frame, changes);
-        world.remove(changes.removed_ids);
-        world.update(changes.updated_ids, changes.updated_boxes);
-        world.insert(changes.inserted_ids, changes.inserted_boxes);
-        detect(frame.number);
-
-        previous_ids.swap(frame.ids);
-        previous_number = frame.number;
-        first_frame = false;
-    }
+    while (scene.advance(world, detect)) detect(scene.frame_number());
     writer.flush();
 }
 

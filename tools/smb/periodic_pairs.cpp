@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "csv_fields.hpp"
-#include "frame_diff.hpp"
+#include "scene_follower.hpp"
 #include "smb/periodic.hpp"
 #include "smb/world.hpp"
 
@@ -43,43 +43,29 @@ void write_frames(io::SceneReader& reader, std::ostream& out, const PeriodicAxes
     }
     World<double, Dim> world;
     std::vector<PeriodicPair> pairs;
-    io::SceneFrame<Dim> frame;
-    io::FrameChanges<Dim> changes;
-    std::vector<BoxId> previous_ids;
-    bool first_frame = true;
-    std::uint64_t previous_number = 0;
+    io::SceneFollower<Dim> scene(reader);
     std::string buffer = Dim == 2 ? "frame,a,b,sx,sy\n" : "frame,a,b,sx,sy,sz\n";
     auto flush = [&] {
         out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
         buffer.clear();
         if (!out) throw std::runtime_error("writing the pairs failed");
     };
-    while (reader.read_frame(frame)) {
-        if (!first_frame && frame.number > previous_number + 1) {
-            world.clear();
-            previous_ids.clear();
-        }
-        io::diff_frames<Dim>(previous_ids, frame, changes);
-        world.remove(changes.removed_ids);
-        world.update(changes.updated_ids, changes.updated_boxes);
-        world.insert(changes.inserted_ids, changes.inserted_boxes);
+    while (scene.advance(world)) {
+        const std::uint64_t number = scene.frame_number();
         try {
             world.detect(domain, pairs);
         } catch (const Error& error) {
-            throw std::runtime_error(fmt::format("frame {}: {}", frame.number, error.what()));
+            throw std::runtime_error(fmt::format("frame {}: {}", number, error.what()));
         }
         sort_periodic_pairs(pairs);
         auto text = std::back_inserter(buffer);
         for (const PeriodicPair& p : pairs) {
             if constexpr (Dim == 2)
-                fmt::format_to(text, "{},{},{},{},{}\n", frame.number, p.a, p.b, p.shift[0], p.shift[1]);
+                fmt::format_to(text, "{},{},{},{},{}\n", number, p.a, p.b, p.shift[0], p.shift[1]);
             else
-                fmt::format_to(text, "{},{},{},{},{},{}\n", frame.number, p.a, p.b, p.shift[0], p.shift[1], p.shift[2]);
+                fmt::format_to(text, "{},{},{},{},{},{}\n", number, p.a, p.b, p.shift[0], p.shift[1], p.shift[2]);
             if (buffer.size() >= kFlushAt) flush();
         }
-        previous_ids.swap(frame.ids);
-        previous_number = frame.number;
-        first_frame = false;
     }
     flush();
 }
