@@ -32,7 +32,8 @@ struct DetectorHandle {
 
     Detector<Real, Dim> detector;
     std::unique_ptr<PairEvents> events;
-    BusyFlag busy;
+    /// Mutable: reads take it too, since a detection in another thread changes what they read.
+    mutable BusyFlag busy;
 };
 
 template <std::floating_point Real, int Dim>
@@ -99,9 +100,15 @@ void bind_detector(py::module_& module) {
         .def("detect_periodic", &detect_periodic<Real, Dim>, py::arg("boxes"), py::arg("lo"), py::arg("hi"),
              py::arg("axes") = py::none(), py::arg("sort") = false)
         .def_property_readonly("begun",
-                               [](const Handle& self) { return pair_array_copy(self.checked_events().begun()); })
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this Detector");
+                                   return pair_array_copy(self.checked_events().begun());
+                               })
         .def_property_readonly("ended",
-                               [](const Handle& self) { return pair_array_copy(self.checked_events().ended()); })
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this Detector");
+                                   return pair_array_copy(self.checked_events().ended());
+                               })
         .def("swap_remove",
              [](Handle& self, BoxId removed, BoxId last) {
                  const BusyScope busy(self.busy, "this Detector");
@@ -124,14 +131,40 @@ void bind_detector(py::module_& module) {
                  const BusyScope busy(self.busy, "this Detector");
                  self.detector.clear();
              })
-        .def_property_readonly("stats", [](const Handle& self) { return stats_dict(self.detector.last_stats()); })
+        .def_property_readonly("stats",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this Detector");
+                                   return stats_dict(self.detector.last_stats());
+                               })
         .def_property_readonly("precision",
-                               [](const Handle& self) { return precision_name(self.detector.last_precision()); })
-        .def_property_readonly("retested_pairs", [](const Handle& self) { return self.detector.last_retested_pairs(); })
-        .def_property_readonly("bytes_held", [](const Handle& self) { return self.detector.bytes_held(); })
-        .def_property_readonly("skin", [](const Handle& self) { return self.detector.settings().skin; })
-        .def_property_readonly("threads", [](const Handle& self) { return self.detector.settings().threads; })
-        .def_property_readonly("events_enabled", [](const Handle& self) { return self.events != nullptr; });
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this Detector");
+                                   return precision_name(self.detector.last_precision());
+                               })
+        .def_property_readonly("retested_pairs",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this Detector");
+                                   return self.detector.last_retested_pairs();
+                               })
+        .def_property_readonly("bytes_held",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this Detector");
+                                   return self.detector.bytes_held();
+                               })
+        .def_property_readonly("skin",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this Detector");
+                                   return self.detector.settings().skin;
+                               })
+        .def_property_readonly("threads",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this Detector");
+                                   return self.detector.settings().threads;
+                               })
+        .def_property_readonly("events_enabled", [](const Handle& self) {
+            const BusyScope busy(self.busy, "this Detector");
+            return self.events != nullptr;
+        });
 }
 
 }  // namespace

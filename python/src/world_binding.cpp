@@ -79,6 +79,7 @@ void set_filter(WorldHandle<Real, Dim>& self, py::handle ids, py::handle categor
 
 template <std::floating_point Real, int Dim>
 py::array_t<Real> box_of(const WorldHandle<Real, Dim>& self, BoxId id) {
+    const BusyScope busy(self.busy, "this World");
     const Box<Real, Dim> box = self.world.box(id);
     py::array_t<Real> array({py::ssize_t{2}, py::ssize_t{Dim}});
     std::memcpy(array.mutable_data(), &box, sizeof box);
@@ -124,20 +125,35 @@ void bind_world(py::module_& module) {
                  const BusyScope busy(self.busy, "this World");
                  self.world.clear();
              })
-        .def("contains", [](const Handle& self, BoxId id) { return self.world.contains(id); })
+        .def("contains",
+             [](const Handle& self, BoxId id) {
+                 const BusyScope busy(self.busy, "this World");
+                 return self.world.contains(id);
+             })
         .def("box", &box_of<Real, Dim>)
-        .def("size", [](const Handle& self) { return self.world.size(); })
+        .def("size",
+             [](const Handle& self) {
+                 const BusyScope busy(self.busy, "this World");
+                 return self.world.size();
+             })
         .def("detect", &detect<Real, Dim>, py::arg("sort") = false)
         .def("detect_periodic", &detect_periodic<Real, Dim>, py::arg("lo"), py::arg("hi"), py::arg("axes") = py::none(),
              py::arg("sort") = false)
         .def_property_readonly("begun",
-                               [](const Handle& self) { return pair_array_copy(self.checked_events().begun()); })
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this World");
+                                   return pair_array_copy(self.checked_events().begun());
+                               })
         .def_property_readonly("ended",
-                               [](const Handle& self) { return pair_array_copy(self.checked_events().ended()); })
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this World");
+                                   return pair_array_copy(self.checked_events().ended());
+                               })
         .def("set_filter", &set_filter<Real, Dim>, py::arg("ids"), py::arg("categories") = py::none(),
              py::arg("masks") = py::none())
         .def("filter",
              [](const Handle& self, BoxId id) {
+                 const BusyScope busy(self.busy, "this World");
                  const Filter filter = self.world.filter(id);
                  return py::make_tuple(filter.category, filter.mask);
              })
@@ -147,14 +163,40 @@ void bind_world(py::module_& module) {
                  const BusyScope busy(self.busy, "this World");
                  self.world.set_static(id_input.ids, is_static);
              })
-        .def("is_static", [](const Handle& self, BoxId id) { return self.world.is_static(id); })
-        .def_property_readonly("stats", [](const Handle& self) { return stats_dict(self.world.last_stats()); })
+        .def("is_static",
+             [](const Handle& self, BoxId id) {
+                 const BusyScope busy(self.busy, "this World");
+                 return self.world.is_static(id);
+             })
+        .def_property_readonly("stats",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this World");
+                                   return stats_dict(self.world.last_stats());
+                               })
         .def_property_readonly("precision",
-                               [](const Handle& self) { return precision_name(self.world.last_precision()); })
-        .def_property_readonly("retested_pairs", [](const Handle& self) { return self.world.last_retested_pairs(); })
-        .def_property_readonly("bytes_held", [](const Handle& self) { return self.world.bytes_held(); })
-        .def_property_readonly("threads", [](const Handle& self) { return self.world.settings().threads; })
-        .def_property_readonly("events_enabled", [](const Handle& self) { return self.events != nullptr; });
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this World");
+                                   return precision_name(self.world.last_precision());
+                               })
+        .def_property_readonly("retested_pairs",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this World");
+                                   return self.world.last_retested_pairs();
+                               })
+        .def_property_readonly("bytes_held",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this World");
+                                   return self.world.bytes_held();
+                               })
+        .def_property_readonly("threads",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this World");
+                                   return self.world.settings().threads;
+                               })
+        .def_property_readonly("events_enabled", [](const Handle& self) {
+            const BusyScope busy(self.busy, "this World");
+            return self.events != nullptr;
+        });
 }
 
 }  // namespace

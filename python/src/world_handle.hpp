@@ -24,7 +24,8 @@ struct WorldHandle {
 
     World<Real, Dim> world;
     std::unique_ptr<PairEvents> events;
-    BusyFlag busy;
+    /// Mutable: reads take it too, since a detection in another thread changes what they read.
+    mutable BusyFlag busy;
 };
 
 template <std::floating_point Real, int Dim>
