@@ -40,7 +40,7 @@ void insert_or_update(WorldHandle<Real, Dim>& self, py::handle ids, py::handle b
 template <std::floating_point Real, int Dim>
 py::array_t<std::int64_t> detect(WorldHandle<Real, Dim>& self, bool sort) {
     const BusyScope busy(self.busy, "this World");
-    std::vector<Pair> pairs;
+    std::vector<Pair> pairs = self.pair_buffer();
     {
         py::gil_scoped_release unlocked;
         if (self.events)
@@ -49,6 +49,7 @@ py::array_t<std::int64_t> detect(WorldHandle<Real, Dim>& self, bool sort) {
             self.world.detect(pairs);
         if (sort) sort_pairs(pairs);
     }
+    self.last_pair_count = pairs.size();
     return pair_array(std::move(pairs));
 }
 
