@@ -55,14 +55,18 @@ def test_world_calls_are_refused_while_it_detects():
 
     worker = threading.Thread(target=detect_repeatedly)
     worker.start()
-    refused = 0
+    refused_changes, refused_reads = 0, 0
     while not finished.is_set():
         try:
             world.update([0], np.zeros((1, 2, 3)))
         except RuntimeError:
-            refused += 1
+            refused_changes += 1
+        try:
+            world.stats  # a read, which the detection changes under it
+        except RuntimeError:
+            refused_reads += 1
     worker.join()
-    assert refused > 0
+    assert refused_changes > 0 and refused_reads > 0
 
 
 @pytest.mark.parametrize("dim", (2, 3))
