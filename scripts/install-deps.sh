@@ -16,6 +16,10 @@ packages=(
   libfmt-dev
   python3-numpy
   python3-matplotlib
+  # the Python module (python/, docs/python.md) and its tests
+  pybind11-dev
+  python3-dev
+  python3-pytest
   # the code's format (.clang-format; scripts/format.sh --check in scripts/test.sh)
   clang-format
   # libFuzzer targets (fuzz/, scripts/fuzz.sh): clang with its sanitizer and fuzzer runtimes

@@ -1,0 +1,306 @@
+# SPDX-License-Identifier: MIT
+"""smb: broad-phase collision detection of moving boxes (Sort Moving Boxes) over NumPy arrays.
+
+Boxes are arrays of shape (N, 2, D), rows min then max, or (N, 2*D) as
+xmin, ymin[, zmin], xmax, ymax[, zmax]; D is 2 or 3, the dtype float32 or float64. Two boxes
+overlap when they overlap or touch on every axis (closed boxes). Pairs come back as (P, 2) int64
+arrays. Detection runs without the GIL.
+
+Errors: bad boxes (NaN, infinity, min > max), unknown and duplicate ids raise InvalidBoxError,
+UnknownIdError and DuplicateIdError, subclasses of smb.Error, itself a ValueError; a call that
+raises changes nothing. A wrong shape raises ValueError, a wrong dtype TypeError.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as _np
+
+from . import _smb
+from ._smb import (
+    ArgumentError,
+    DuplicateIdError,
+    Error,
+    InvalidBoxError,
+    PairLimitError,
+    UnknownIdError,
+    openmp_enabled,
+)
+
+__all__ = [
+    "ArgumentError",
+    "Detector",
+    "DuplicateIdError",
+    "Error",
+    "InvalidBoxError",
+    "PairLimitError",
+    "UnknownIdError",
+    "World",
+    "find_overlapping_pairs",
+    "openmp_enabled",
+]
+
+_DEFAULT_TARGET_CELL_POPULATION = 24
+_DEFAULT_MAX_PAIRS_HELD = 1 << 28
+
+
+def find_overlapping_pairs(boxes, b_boxes=None, *, threads=1,
+                           target_cell_population=_DEFAULT_TARGET_CELL_POPULATION,
+                           max_pairs_held=_DEFAULT_MAX_PAIRS_HELD):
+    """Every pair of overlapping boxes, as a (P, 2) int64 array sorted by rows.
+
+    find_overlapping_pairs(boxes): the pairs (i, j), i < j, within one set.
+    find_overlapping_pairs(a_boxes, b_boxes): the pairs (i, j) with a_boxes[i] overlapping
+    b_boxes[j] (i and j index different sets: i < j does not hold).
+
+    float32 boxes are detected as floats, any other dtype as float64 (two sets as floats only
+    when both are float32). threads: OpenMP threads (0: all cores). More than max_pairs_held
+    pairs raise PairLimitError.
+    """
+    if b_boxes is None:
+        return _smb.find_overlapping_pairs(boxes, threads, target_cell_population, max_pairs_held)
+    return _smb.find_overlapping_pairs_between(boxes, b_boxes, threads, target_cell_population,
+                                               max_pairs_held)
+
+
+def _implementation(prefix, dim, dtype):
+    if dim not in (2, 3):
+        raise ValueError(f"dim must be 2 or 3; got {dim!r}")
+    dtype = _np.dtype(dtype)
+    if dtype == _np.float32:
+        suffix = "f"
+    elif dtype == _np.float64:
+        suffix = "d"
+    else:
+        raise TypeError(f"dtype must be float32 or float64; got {dtype}")
+    return getattr(_smb, f"{prefix}{dim}{suffix}"), dtype
+
+
+class Detector:
+    """The SMB broad phase over an array of boxes the caller keeps: box i is body i.
+
+    Each detect() takes the whole array and returns every overlapping pair of indices. The
+    detector keeps what makes the next call fast (its axial cuts, the order of the bodies), so
+    box i should be the same body from one call to the next; the array may grow or shrink.
+
+    dim, dtype: the boxes' dimension (2 or 3) and dtype (float32 or float64). Boxes of another
+    dtype are converted when every value converts exactly, else TypeError.
+    skin: grow each box by this much and keep the candidate pairs between calls (a Verlet list);
+    pays while boxes move much less than the skin per call. 0 detects from scratch each call.
+    threads: OpenMP threads for a detection (0: all cores); the pairs do not depend on it.
+    events: keep the pairs of the previous call, so that begun and ended give the pairs that
+    began and ended overlapping (costs about 60 bytes per pair).
+    """
+
+    def __init__(self, dim=3, dtype=_np.float64, *, skin=0.0, threads=1, events=False,
+                 target_cell_population=_DEFAULT_TARGET_CELL_POPULATION,
+                 max_pairs_held=_DEFAULT_MAX_PAIRS_HELD):
+        implementation, self.dtype = _implementation("Detector", dim, dtype)
+        self.dim = dim
+        self._impl = implementation(float(skin), threads, target_cell_population, max_pairs_held,
+                                    bool(events))
+
+    def detect(self, boxes, *, categories=None, masks=None, static=None, sort=False):
+        """Every overlapping pair (i, j), i < j, of `boxes`, as a (P, 2) int64 array.
+
+        categories, masks: per-box collision filter bits (one value or one per box): boxes i
+        and j pair when categories[i] & masks[j] and categories[j] & masks[i] are both non-zero.
+        static: per-box flags; two static boxes never pair. sort: return the pairs sorted by
+        rows (otherwise in a deterministic but unspecified order).
+        """
+        return self._impl.detect(boxes, categories, masks, static, sort)
+
+    def detect_periodic(self, boxes, lo, hi, *, axes=None, sort=False):
+        """Pairs in a periodic domain: (pairs, shifts), (P, 2) int64 and (P, dim) int32.
+
+        Axis k wraps around over [lo[k], hi[k]) where axes[k] is true (every axis when axes is
+        None). Box i overlaps box j translated by shifts[p] periods. Each box's extent must be
+        below half the period (else InvalidBoxError).
+        """
+        return self._impl.detect_periodic(boxes, lo, hi, axes, sort)
+
+    @property
+    def begun(self):
+        """Pairs of the last detection that were not in the one before, sorted ((P, 2) int64)."""
+        return self._impl.begun
+
+    @property
+    def ended(self):
+        """Pairs of the detection before the last that are not in the last one, sorted."""
+        return self._impl.ended
+
+    def swap_remove(self, removed, last):
+        """Tells the events that body `last` moved to index `removed`, whose body is gone."""
+        self._impl.swap_remove(removed, last)
+
+    def replace(self, indices):
+        """Tells the events that the bodies at `indices` are new ones: their old pairs end."""
+        self._impl.replace(indices)
+
+    def replace_all(self):
+        """Tells the events that every body is a new one."""
+        self._impl.replace_all()
+
+    def clear(self):
+        """Forgets the cuts and the order and releases their memory; keeps the settings."""
+        self._impl.clear()
+
+    @property
+    def stats(self):
+        """What the last detection did and cost: a dict of counts and seconds."""
+        return self._impl.stats
+
+    @property
+    def precision(self):
+        """What the last detection held: 'none', 'floats' or 'doubles'."""
+        return self._impl.precision
+
+    @property
+    def bytes_held(self):
+        """Heap bytes the detector holds (the caller's array not counted)."""
+        return self._impl.bytes_held
+
+    @property
+    def skin(self):
+        return self._impl.skin
+
+    @property
+    def threads(self):
+        return self._impl.threads
+
+    def __repr__(self):
+        return f"smb.Detector(dim={self.dim}, dtype={self.dtype.name}, skin={self.skin})"
+
+
+class World:
+    """A set of moving boxes under caller-chosen ids, and the SMB broad phase over them.
+
+    Ids are non-negative integers below 2**63 (int64 on the way back). insert, update and
+    remove take arrays of ids and boxes and change all or nothing; detect() then returns every
+    overlapping pair of ids (a, b), a < b. The world keeps its axial cuts from one detection to
+    the next, so a detection after small motions costs linear time.
+
+    dim, dtype, threads, events: as Detector. pipeline: 'persistent_cuts' (the default) or
+    'paper_lists' (the paper's sorted lists; slower, kept to reproduce the paper).
+    """
+
+    def __init__(self, dim=3, dtype=_np.float64, *, threads=1, events=False,
+                 pipeline="persistent_cuts",
+                 target_cell_population=_DEFAULT_TARGET_CELL_POPULATION,
+                 max_pairs_held=_DEFAULT_MAX_PAIRS_HELD):
+        implementation, self.dtype = _implementation("World", dim, dtype)
+        self.dim = dim
+        self._impl = implementation(threads, target_cell_population, max_pairs_held, pipeline,
+                                    bool(events))
+
+    def insert(self, ids, boxes):
+        """Adds boxes[i] under ids[i]. DuplicateIdError for an id present or named twice."""
+        self._impl.insert(ids, boxes)
+
+    def update(self, ids, boxes):
+        """Moves or resizes the boxes of `ids`. UnknownIdError for an id not present."""
+        self._impl.update(ids, boxes)
+
+    def remove(self, ids):
+        """Removes the boxes of `ids`. UnknownIdError for an id not present."""
+        self._impl.remove(ids)
+
+    def assign(self, boxes):
+        """Makes the world hold exactly `boxes`, box i under id i."""
+        self._impl.assign(boxes)
+
+    def clear(self):
+        """Removes every box and releases the memory held; keeps the settings."""
+        self._impl.clear()
+
+    def __len__(self):
+        return self._impl.size()
+
+    def __contains__(self, id):
+        return self._impl.contains(id)
+
+    def box(self, id):
+        """The box under `id`, a (2, dim) array (rows min, max). UnknownIdError if absent."""
+        return self._impl.box(id)
+
+    def detect(self, *, sort=False):
+        """Every overlapping pair of ids (a, b), a < b, as a (P, 2) int64 array.
+
+        With filters or static boxes set, only the pairs they let through. sort: sorted by rows
+        (otherwise in a deterministic but unspecified order).
+        """
+        return self._impl.detect(sort)
+
+    def detect_periodic(self, lo, hi, *, axes=None, sort=False):
+        """Pairs in a periodic domain: (pairs, shifts), as Detector.detect_periodic.
+
+        ArgumentError while filters or static boxes are in use.
+        """
+        return self._impl.detect_periodic(lo, hi, axes, sort)
+
+    @property
+    def begun(self):
+        """Pairs of the last detection that were not in the one before, sorted ((P, 2) int64)."""
+        return self._impl.begun
+
+    @property
+    def ended(self):
+        """Pairs of the detection before the last that are not in the last one, sorted."""
+        return self._impl.ended
+
+    def set_filter(self, ids, categories=None, masks=None):
+        """Sets the collision filters of `ids` (one value or one per id; None: the default,
+        category 1 and every mask bit). Boxes a and b pair when category[a] & mask[b] and
+        category[b] & mask[a] are both non-zero."""
+        self._impl.set_filter(ids, categories, masks)
+
+    def filter(self, id):
+        """(category, mask) of box `id`."""
+        return self._impl.filter(id)
+
+    def set_static(self, ids, is_static=True):
+        """Makes the boxes of `ids` static (two static boxes never pair) or dynamic again."""
+        self._impl.set_static(ids, bool(is_static))
+
+    def is_static(self, id):
+        return self._impl.is_static(id)
+
+    def query(self, box):
+        """Ids of the boxes overlapping `box` ((2, dim) or (2*dim,)), sorted, int64."""
+        return self._impl.query(box)
+
+    def query_batch(self, boxes):
+        """(H, 2) int64 array of (query index, id) for every box overlapping each query box,
+        sorted by rows."""
+        return self._impl.query_batch(boxes)
+
+    def cast_ray(self, origin, direction, max_t=math.inf, *, all=False):
+        """The boxes the ray origin + t * direction, 0 <= t <= max_t, enters: (ids, t).
+
+        The nearest one (least t, then least id), or with all=True every one sorted by (t, id).
+        t is 0 for a box containing the origin. ArgumentError for an invalid ray.
+        """
+        return self._impl.cast_ray(origin, direction, float(max_t), all)
+
+    @property
+    def stats(self):
+        """What the last detection did and cost: a dict of counts and seconds."""
+        return self._impl.stats
+
+    @property
+    def precision(self):
+        """What the last detection held: 'none', 'floats' or 'doubles'."""
+        return self._impl.precision
+
+    @property
+    def bytes_held(self):
+        """Heap bytes the world holds."""
+        return self._impl.bytes_held
+
+    @property
+    def threads(self):
+        return self._impl.threads
+
+    def __repr__(self):
+        return f"smb.World(dim={self.dim}, dtype={self.dtype.name}, size={len(self)})"

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+// The compiled part of the Python package smb: smb/__init__.py wraps it in the public names.
+
+#include <pybind11/pybind11.h>
+
+#include "bindings.hpp"
+#include "smb/errors.hpp"
+#include "smb/settings.hpp"
+
+namespace smb::python {
+
+py::dict stats_dict(const DetectStats& stats) {
+    py::dict dict;
+    dict["boxes"] = stats.boxes;
+    dict["pairs"] = stats.pairs;
+    dict["cells"] = stats.cells;
+    dict["oversized_boxes"] = stats.oversized_boxes;
+    dict["sort_moves"] = stats.sort_moves;
+    dict["bytes_held"] = stats.bytes_held;
+    dict["skin_candidates"] = stats.skin_candidates;
+    dict["skin_refreshed"] = stats.skin_refreshed;
+    dict["skin_rebuilt"] = stats.skin_rebuilt;
+    dict["update_seconds"] = stats.update_seconds;
+    dict["scan_seconds"] = stats.scan_seconds;
+    dict["containment_seconds"] = stats.containment_seconds;
+    dict["quantile_seconds"] = stats.quantile_seconds;
+    dict["list_sort_seconds"] = stats.list_sort_seconds;
+    dict["cut_regroup_seconds"] = stats.cut_regroup_seconds;
+    dict["check_seconds"] = stats.check_seconds;
+    dict["copy_seconds"] = stats.copy_seconds;
+    dict["level_seconds"] = py::make_tuple(stats.level_seconds[0], stats.level_seconds[1], stats.level_seconds[2]);
+    dict["total_seconds"] = stats.total_seconds;
+    return dict;
+}
+
+const char* precision_name(HeldPrecision precision) {
+    switch (precision) {
+        case HeldPrecision::floats:
+            return "floats";
+        case HeldPrecision::doubles:
+            return "doubles";
+        case HeldPrecision::none:
+            break;
+    }
+    return "none";
+}
+
+}  // namespace smb::python
+
+PYBIND11_MODULE(_smb, module) {
+    namespace py = pybind11;
+    using namespace smb::python;
+    module.doc() = "The compiled part of smb; use the names of the smb package.";
+
+    // Base first: pybind11 tries the translators last registered first, so each subclass is
+    // caught as itself before the base would take it.
+    const auto error = py::register_exception<smb::Error>(module, "Error", PyExc_ValueError);
+    py::register_exception<smb::InvalidBoxError>(module, "InvalidBoxError", error);
+    py::register_exception<smb::UnknownIdError>(module, "UnknownIdError", error);
+    py::register_exception<smb::DuplicateIdError>(module, "DuplicateIdError", error);
+    py::register_exception<smb::PairLimitError>(module, "PairLimitError", error);
+    py::register_exception<smb::ArgumentError>(module, "ArgumentError", error);
+
+    module.def("openmp_enabled", &smb::openmp_enabled, "True when detect() can use more than one thread.");
+
+    bind_functions(module);
+    bind_detectors(module);
+    bind_worlds(module);
+    bind_world_queries(module);
+}
