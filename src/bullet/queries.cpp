@@ -53,9 +53,8 @@ void Broadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBro
             }
             if (const auto t = ray_entry(ray, grown)) hits.push_back(RayHit<float>{id, static_cast<float>(*t)});
         }
-        std::sort(hits.begin(), hits.end(), [](const RayHit<float>& a, const RayHit<float>& b) {
-            return a.t != b.t ? a.t < b.t : a.id < b.id;
-        });
+        std::sort(hits.begin(), hits.end(),
+                  [](const RayHit<float>& a, const RayHit<float>& b) { return a.t != b.t ? a.t < b.t : a.id < b.id; });
     }
     for (const RayHit<float>& hit : hits) {
         // The callback may have shortened the ray (a closer hit found).

@@ -24,7 +24,7 @@ using UidPair = std::pair<int, int>;
 /// Bullet's default rule for a pair, when the cache has no filter callback.
 [[nodiscard]] inline bool bits_pass(const btBroadphaseProxy& a, const btBroadphaseProxy& b) {
     return (a.m_collisionFilterGroup & b.m_collisionFilterMask) != 0 &&
-        (b.m_collisionFilterGroup & a.m_collisionFilterMask) != 0;
+           (b.m_collisionFilterGroup & a.m_collisionFilterMask) != 0;
 }
 
 [[nodiscard]] inline UidPair uid_pair(const btBroadphaseProxy& a, const btBroadphaseProxy& b) {

@@ -40,7 +40,8 @@ public:
         int group = btBroadphaseProxy::DefaultFilter;
         int mask = btBroadphaseProxy::AllFilter;
         random_filter(group, mask);
-        btBroadphaseProxy* proxy = broadphase_.createProxy(min, max, BOX_SHAPE_PROXYTYPE, nullptr, group, mask, nullptr);
+        btBroadphaseProxy* proxy =
+            broadphase_.createProxy(min, max, BOX_SHAPE_PROXYTYPE, nullptr, group, mask, nullptr);
         proxies_.push_back(proxy);
         return proxy;
     }
@@ -236,10 +237,10 @@ TEST(BulletBroadphase, BoundsAndResetPool) {
     broadphase.getBroadphaseAabb(min, max);
     EXPECT_EQ(min, btVector3(0, 0, 0));
     EXPECT_EQ(max, btVector3(0, 0, 0));
-    btBroadphaseProxy* a = broadphase.createProxy(btVector3(-3, 0, 0), btVector3(0, 1, 1), BOX_SHAPE_PROXYTYPE,
-                                                  nullptr, 1, -1, nullptr);
-    btBroadphaseProxy* b = broadphase.createProxy(btVector3(0, -2, 0), btVector3(1, 1, 5), BOX_SHAPE_PROXYTYPE,
-                                                  nullptr, 1, -1, nullptr);
+    btBroadphaseProxy* a =
+        broadphase.createProxy(btVector3(-3, 0, 0), btVector3(0, 1, 1), BOX_SHAPE_PROXYTYPE, nullptr, 1, -1, nullptr);
+    btBroadphaseProxy* b =
+        broadphase.createProxy(btVector3(0, -2, 0), btVector3(1, 1, 5), BOX_SHAPE_PROXYTYPE, nullptr, 1, -1, nullptr);
     broadphase.getBroadphaseAabb(min, max);
     EXPECT_EQ(min, btVector3(-3, -2, 0));
     EXPECT_EQ(max, btVector3(1, 1, 5));
@@ -251,10 +252,10 @@ TEST(BulletBroadphase, BoundsAndResetPool) {
     broadphase.resetPool(nullptr);
     broadphase.calculateOverlappingPairs(nullptr);
     EXPECT_EQ(broadphase.getOverlappingPairCache()->getNumOverlappingPairs(), 0);
-    btBroadphaseProxy* c = broadphase.createProxy(btVector3(0, 0, 0), btVector3(1, 1, 1), BOX_SHAPE_PROXYTYPE,
-                                                  nullptr, 1, -1, nullptr);
-    btBroadphaseProxy* d = broadphase.createProxy(btVector3(1, 1, 1), btVector3(2, 2, 2), BOX_SHAPE_PROXYTYPE,
-                                                  nullptr, 1, -1, nullptr);
+    btBroadphaseProxy* c =
+        broadphase.createProxy(btVector3(0, 0, 0), btVector3(1, 1, 1), BOX_SHAPE_PROXYTYPE, nullptr, 1, -1, nullptr);
+    btBroadphaseProxy* d =
+        broadphase.createProxy(btVector3(1, 1, 1), btVector3(2, 2, 2), BOX_SHAPE_PROXYTYPE, nullptr, 1, -1, nullptr);
     broadphase.calculateOverlappingPairs(nullptr);
     EXPECT_EQ(broadphase.getOverlappingPairCache()->getNumOverlappingPairs(), 1);
     EXPECT_NE(c, d);

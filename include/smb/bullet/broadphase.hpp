@@ -63,7 +63,8 @@ public:
     Broadphase& operator=(const Broadphase&) = delete;
 
     btBroadphaseProxy* createProxy(const btVector3& aabbMin, const btVector3& aabbMax, int shapeType, void* userPtr,
-                                   int collisionFilterGroup, int collisionFilterMask, btDispatcher* dispatcher) override;
+                                   int collisionFilterGroup, int collisionFilterMask,
+                                   btDispatcher* dispatcher) override;
     void destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher) override;
     void setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax,
                  btDispatcher* dispatcher) override;
