@@ -35,8 +35,7 @@ int main(int argc, char** argv) {
     app.add_option("--bodies", settings.bodies, "boxes and spheres poured")->check(CLI::Range(1, 10'000'000));
     app.add_option("--steps", steps, "steps of 1/60 s")->check(CLI::NonNegativeNumber);
     app.add_option("--report-every", report_every, "steps between lines of output")->check(CLI::PositiveNumber);
-    app.add_option("--broadphase", broadphase_name, "smb, dbvt or sap")
-        ->check(CLI::IsMember({"smb", "dbvt", "sap"}));
+    app.add_option("--broadphase", broadphase_name, "smb, dbvt or sap")->check(CLI::IsMember({"smb", "dbvt", "sap"}));
     app.add_option("--seed", settings.seed, "of the pour's jitter and the bodies taken out");
     CLI11_PARSE(app, argc, argv);
 

@@ -109,8 +109,8 @@ PileMeasure PileScene::measure() const {
         measure.mean_height += body.getCenterOfMassPosition().y();
         const btVector3 spin = body.getAngularVelocity();
         const btVector3 inertia = body.getLocalInertia();
-        measure.kinetic_energy += 0.5 * body.getLinearVelocity().length2() / body.getInvMass() +
-            0.5 * (spin * spin).dot(inertia);
+        measure.kinetic_energy +=
+            0.5 * body.getLinearVelocity().length2() / body.getInvMass() + 0.5 * (spin * spin).dot(inertia);
         ++moving;
     }
     if (moving > 0) measure.mean_height /= static_cast<double>(moving);

@@ -27,7 +27,7 @@ struct PileSettings {
 
 /// What the pile looks like at one instant.
 struct PileMeasure {
-    double mean_height = 0;  ///< of the dynamic bodies' centres
+    double mean_height = 0;    ///< of the dynamic bodies' centres
     std::size_t contacts = 0;  ///< contact points in every manifold
     std::size_t manifolds = 0;
     double kinetic_energy = 0;  ///< translational and rotational, of the dynamic bodies

@@ -21,9 +21,14 @@ namespace {
 void Broadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
                          const btVector3& aabbMin, const btVector3& aabbMax) {
     flush_moves();
+    // Bullet's callbacks measure lambda along the unit direction from rayFrom to rayTo
+    // (m_lambda_max = |rayTo - rayFrom| to start with).
+    const btVector3 offset = rayTo - rayFrom;
+    const float length = offset.length();
+    const btVector3 direction = length > 0 ? offset / length : btVector3(0, 0, 0);
     Ray<float, 3> ray;
     ray.origin = {rayFrom.x(), rayFrom.y(), rayFrom.z()};
-    ray.direction = {rayTo.x() - rayFrom.x(), rayTo.y() - rayFrom.y(), rayTo.z() - rayFrom.z()};
+    ray.direction = {direction.x(), direction.y(), direction.z()};
     ray.max_t = rayCallback.m_lambda_max;
     if (!is_valid(ray)) return;  // a NaN or negative m_lambda_max: nothing lies within it
 

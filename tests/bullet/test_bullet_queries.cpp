@@ -25,8 +25,9 @@ constexpr int queries = 60;
 constexpr int queries = 300;
 #endif
 
+/// Bullet's ray callbacks measure lambda in distance along the unit direction.
 struct RayRecorder : btBroadphaseRayCallback {
-    explicit RayRecorder(float lambda_max = 1.0f) { m_lambda_max = lambda_max; }
+    explicit RayRecorder(float lambda_max) { m_lambda_max = lambda_max; }
     bool process(const btBroadphaseProxy* proxy) override {
         visited.push_back(proxy->m_uniqueId);
         return on_visit ? on_visit(*proxy, *this) : true;
@@ -63,14 +64,17 @@ protected:
         return proxy;
     }
 
-    /// The entry of the segment into each proxy's box grown by [-grow_max, -grow_min], as
-    /// smb::ray_entry defines it, nearest first (ties by unique id).
+    /// The entry, in distance from `from`, of the ray towards `to` into each proxy's box grown by
+    /// [-grow_max, -grow_min], as smb::ray_entry defines it, nearest first (ties by unique id).
     std::vector<std::pair<float, int>> expected_hits(const btVector3& from, const btVector3& to, float lambda_max,
                                                      const btVector3& grow_min = btVector3(0, 0, 0),
                                                      const btVector3& grow_max = btVector3(0, 0, 0)) const {
         smb::Ray<float, 3> ray;
         ray.origin = {from.x(), from.y(), from.z()};
-        ray.direction = {to.x() - from.x(), to.y() - from.y(), to.z() - from.z()};
+        const btVector3 offset = to - from;
+        const float length = offset.length();
+        const btVector3 unit = length > 0 ? offset / length : btVector3(0, 0, 0);
+        ray.direction = {unit.x(), unit.y(), unit.z()};
         ray.max_t = lambda_max;
         std::vector<std::pair<float, int>> hits;
         for (const btBroadphaseProxy* proxy : proxies_) {
@@ -103,9 +107,9 @@ TEST_F(BulletQueries, RayTestVisitsEveryBoxTheSegmentEntersNearestFirst) {
     for (int i = 0; i < queries; ++i) {
         const btVector3 from = random_point();
         const btVector3 to = i % 10 == 0 ? from : random_point();  // some zero-length segments
-        RayRecorder recorder;
+        RayRecorder recorder(from.distance(to));
         broadphase_.rayTest(from, to, recorder);
-        ASSERT_EQ(recorder.visited, ids_of(expected_hits(from, to, 1.0f))) << "query " << i;
+        ASSERT_EQ(recorder.visited, ids_of(expected_hits(from, to, from.distance(to)))) << "query " << i;
         total += recorder.visited.size();
     }
     EXPECT_GT(total, static_cast<std::size_t>(queries / 2));  // the rays do hit
@@ -117,9 +121,10 @@ TEST_F(BulletQueries, RayTestGrowsTheBoxesBySweptShapesBox) {
         const btVector3 to = random_point();
         const btVector3 grow_min(-0.5f, -0.25f, -1.0f);
         const btVector3 grow_max(0.5f, 0.75f, 0.0f);
-        RayRecorder recorder;
+        RayRecorder recorder(from.distance(to));
         broadphase_.rayTest(from, to, recorder, grow_min, grow_max);
-        ASSERT_EQ(recorder.visited, ids_of(expected_hits(from, to, 1.0f, grow_min, grow_max))) << "query " << i;
+        ASSERT_EQ(recorder.visited, ids_of(expected_hits(from, to, from.distance(to), grow_min, grow_max)))
+            << "query " << i;
     }
 }
 
@@ -127,15 +132,16 @@ TEST_F(BulletQueries, RayTestStopsWhenProcessSaysSoOrTheRayShortens) {
     for (int i = 0; i < queries; ++i) {
         const btVector3 from = random_point();
         const btVector3 to = random_point();
-        const auto hits = expected_hits(from, to, 1.0f);
+        const float length = from.distance(to);
+        const auto hits = expected_hits(from, to, length);
         if (hits.size() < 2) continue;
-        RayRecorder stopper;
+        RayRecorder stopper(length);
         stopper.on_visit = [&](const btBroadphaseProxy&, RayRecorder& self) { return self.visited.size() < 2; };
         broadphase_.rayTest(from, to, stopper);
         ASSERT_EQ(stopper.visited, std::vector<int>({hits[0].second, hits[1].second}));
 
         // A callback that found a surface at the first entry: only boxes entered no later follow.
-        RayRecorder shortener;
+        RayRecorder shortener(length);
         shortener.on_visit = [&](const btBroadphaseProxy&, RayRecorder& self) {
             self.m_lambda_max = std::min(self.m_lambda_max, hits[0].first);
             return true;
@@ -147,9 +153,9 @@ TEST_F(BulletQueries, RayTestStopsWhenProcessSaysSoOrTheRayShortens) {
         }
         ASSERT_EQ(shortener.visited, expected);
 
-        RayRecorder half(0.5f);
+        RayRecorder half(length / 2);
         broadphase_.rayTest(from, to, half);
-        ASSERT_EQ(half.visited, ids_of(expected_hits(from, to, 0.5f)));
+        ASSERT_EQ(half.visited, ids_of(expected_hits(from, to, length / 2)));
     }
 }
 
@@ -191,12 +197,14 @@ TEST_F(BulletQueries, CallbacksMayCreateAndDestroyProxies) {
             add(random_point(), 1.0f);
             return true;
         };
-        RayRecorder ray;
+        const btVector3 from = random_point();
+        const btVector3 to = random_point();
+        RayRecorder ray(from.distance(to));
         ray.on_visit = [&](const btBroadphaseProxy& visited, RayRecorder&) {
             for (const int gone : destroyed) EXPECT_NE(visited.m_uniqueId, gone);
             return mutate(visited);
         };
-        broadphase_.rayTest(random_point(), random_point(), ray);
+        broadphase_.rayTest(from, to, ray);
         BoxRecorder box;
         box.on_visit = [&](const btBroadphaseProxy& visited) {
             for (const int gone : destroyed) EXPECT_NE(visited.m_uniqueId, gone);

@@ -39,7 +39,8 @@ namespace smb::bullet {
 /// decides every overlapping pair, at every step.
 ///
 /// Queries: rayTest reports the proxies whose boxes, grown by the query's (aabbMin, aabbMax) as
-/// btDbvt grows them, the segment enters within [0, callback.m_lambda_max], nearest first; it
+/// btDbvt grows them, the ray from rayFrom towards rayTo enters within a distance
+/// callback.m_lambda_max (Bullet's callbacks set it to |rayTo - rayFrom|), nearest first; it
 /// stops when the callback's process() returns false or the next entry lies past m_lambda_max
 /// (read again after each call, so a callback that shrinks it cuts the test short). aabbTest
 /// reports the proxies whose boxes overlap the query box, and stops likewise when process()
