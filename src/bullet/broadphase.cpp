@@ -236,10 +236,11 @@ void Broadphase::apply_pair_events(btDispatcher* dispatcher) {
 }
 
 void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
-    flush_moves();
+    // Filters first, so that a static proxy that moved since is held dynamic by flush_moves.
     const bool callback_mode = cache_->getOverlapFilterCallback() != nullptr;
     if (callback_mode != callback_mode_) set_callback_mode(callback_mode);
     if (!callback_mode_) sync_filters();
+    flush_moves();
     // With nothing changed the pairs are those the cache holds. A filter callback may change its
     // mind at any step, so it is asked at every one.
     if (changed_ || callback_mode_) {

@@ -30,11 +30,13 @@ struct Broadphase::Proxy : btBroadphaseProxy {
 
 namespace detail {
 
-/// Static and kinematic objects as btCollisionWorld files them: a group of StaticFilter and
-/// KinematicFilter bits alone, a mask with neither. For two such proxies a.group & b.mask is 0,
-/// so Bullet never pairs them and smb may hold both as static boxes.
+/// Static and kinematic objects as btCollisionWorld files them (group StaticFilter, mask every bit
+/// but StaticFilter), and any proxy whose group holds only StaticFilter and KinematicFilter bits
+/// and whose mask holds neither. For any two such proxies a and b, a.group & b.mask is 0 or
+/// b.group & a.mask is 0, so Bullet never pairs them and smb may hold both as static boxes.
 [[nodiscard]] inline bool is_static_class(int group, int mask) noexcept {
     constexpr int fixed = btBroadphaseProxy::StaticFilter | btBroadphaseProxy::KinematicFilter;
+    if (group == btBroadphaseProxy::StaticFilter) return (mask & btBroadphaseProxy::StaticFilter) == 0;
     return group != 0 && (group & ~fixed) == 0 && (mask & fixed) == 0;
 }
 

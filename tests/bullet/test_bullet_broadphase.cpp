@@ -155,6 +155,31 @@ TEST(BulletBroadphase, StaticsStayExactWhenTheyMoveAndWhenTheyRest) {
         ASSERT_EQ(smb::test::cache_pairs(*broadphase.getOverlappingPairCache()),
                   smb::test::expected_pairs(all, *broadphase.getOverlappingPairCache()))
             << "at step " << step;
+        // Held dynamic while it moves, static again once it has rested a while.
+        const bool held_static = broadphase.world().is_static(static_cast<smb::BoxId>(pusher->m_uniqueId));
+        if (step < 30) {
+            EXPECT_FALSE(held_static) << "at step " << step;
+        } else if (step >= 50) {
+            EXPECT_TRUE(held_static) << "at step " << step;
+        }
+    }
+    // The statics that never moved were held static from the start, a kinematic one filed in the
+    // kinematic group too; a dynamic proxy never is.
+    btBroadphaseProxy* kinematic = broadphase.createProxy(
+        btVector3(0, 0, 0), btVector3(1, 1, 1), BOX_SHAPE_PROXYTYPE, nullptr, btBroadphaseProxy::KinematicFilter,
+        btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter ^ btBroadphaseProxy::KinematicFilter, nullptr);
+    broadphase.calculateOverlappingPairs(nullptr);
+    EXPECT_TRUE(broadphase.world().is_static(static_cast<smb::BoxId>(kinematic->m_uniqueId)));
+    for (const btBroadphaseProxy* proxy : history.proxies()) {
+        // The documented rule: Bullet's static filing, or static and kinematic bits alone in the
+        // group and neither in the mask.
+        const int group = proxy->m_collisionFilterGroup;
+        const int mask = proxy->m_collisionFilterMask;
+        constexpr int both = btBroadphaseProxy::StaticFilter | btBroadphaseProxy::KinematicFilter;
+        const bool fixed =
+            (group == btBroadphaseProxy::StaticFilter && (mask & btBroadphaseProxy::StaticFilter) == 0) ||
+            (group != 0 && (group & ~both) == 0 && (mask & both) == 0);
+        EXPECT_EQ(broadphase.world().is_static(static_cast<smb::BoxId>(proxy->m_uniqueId)), fixed);
     }
 }
 
