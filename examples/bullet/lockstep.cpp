@@ -41,9 +41,10 @@ std::vector<Serial> overlapping_pairs(btCollisionWorld& world) {
             const btBroadphaseProxy& b = *objects[j]->getBroadphaseHandle();
             if (b.m_aabbMin.x() > a.m_aabbMax.x()) break;
             bool overlap = true;
-            for (int k = 1; k < 3; ++k) overlap = overlap && a.m_aabbMin[k] <= b.m_aabbMax[k] && b.m_aabbMin[k] <= a.m_aabbMax[k];
+            for (int k = 1; k < 3; ++k)
+                overlap = overlap && a.m_aabbMin[k] <= b.m_aabbMax[k] && b.m_aabbMin[k] <= a.m_aabbMax[k];
             const bool pass = (a.m_collisionFilterGroup & b.m_collisionFilterMask) != 0 &&
-                (b.m_collisionFilterGroup & a.m_collisionFilterMask) != 0;
+                              (b.m_collisionFilterGroup & a.m_collisionFilterMask) != 0;
             if (overlap && pass) pairs.push_back(std::minmax(objects[i]->getUserIndex(), objects[j]->getUserIndex()));
         }
     }
@@ -155,7 +156,8 @@ float sweep_fraction(btCollisionWorld& world, const btConvexShape& shape, const 
 struct ContactNames : btCollisionWorld::ContactResultCallback {
     btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper* a, int, int,
                              const btCollisionObjectWrapper* b, int, int) override {
-        const Serial name = std::minmax(a->getCollisionObject()->getUserIndex(), b->getCollisionObject()->getUserIndex());
+        const Serial name =
+            std::minmax(a->getCollisionObject()->getUserIndex(), b->getCollisionObject()->getUserIndex());
         (point.getDistance() <= 0 ? touching : near).push_back(name);
         return 0;
     }
@@ -256,7 +258,7 @@ int main(int argc, char** argv) {
                 }
             }
             const bool offered = std::includes(expected.begin(), expected.end(), mirrored.begin(), mirrored.end()) &&
-                std::includes(mirrored.begin(), mirrored.end(), within.begin(), within.end());
+                                 std::includes(mirrored.begin(), mirrored.end(), within.begin(), within.end());
             if (!offered) {
                 fmt::print(stderr, "step {}: a ray cast differs: {} hits on btDbvtBroadphase, {} on smb\n", step,
                            expected.size(), mirrored.size());
@@ -273,8 +275,9 @@ int main(int argc, char** argv) {
             const bool near_included = std::includes(dbvt_contacts.near.begin(), dbvt_contacts.near.end(),
                                                      smb_contacts.near.begin(), smb_contacts.near.end());
             if (smb_contacts.touching != dbvt_contacts.touching || !near_included) {
-                fmt::print(stderr, "step {}: a contact test differs: {} objects touched on btDbvtBroadphase, {} on smb\n",
-                           step, dbvt_contacts.touching.size(), smb_contacts.touching.size());
+                fmt::print(stderr,
+                           "step {}: a contact test differs: {} objects touched on btDbvtBroadphase, {} on smb\n", step,
+                           dbvt_contacts.touching.size(), smb_contacts.touching.size());
                 return 1;
             }
             hits_compared += expected.size() + dbvt_contacts.touching.size();
@@ -282,11 +285,12 @@ int main(int argc, char** argv) {
         }
     }
     const smb::examples::PileMeasure measure = scene.measure();
-    fmt::print("{} steps of {} bodies: smb's cache held exactly the {} overlapping pairs of every step "
-               "(btDbvtBroadphase's held {}, fattened); {} ray, sweep and contact hits agreed ({} objects near a probe "
-               "but not touching it, and {} ray hits outside the object's box, were reported on btDbvtBroadphase "
-               "alone); mean height {:.3f}\n",
-               steps, settings.bodies, pairs_checked, dbvt_pairs, hits_compared, near_only_dbvt, hits_outside_box,
-               measure.mean_height);
+    fmt::print(
+        "{} steps of {} bodies: smb's cache held exactly the {} overlapping pairs of every step "
+        "(btDbvtBroadphase's held {}, fattened); {} ray, sweep and contact hits agreed ({} objects near a probe "
+        "but not touching it, and {} ray hits outside the object's box, were reported on btDbvtBroadphase "
+        "alone); mean height {:.3f}\n",
+        steps, settings.bodies, pairs_checked, dbvt_pairs, hits_compared, near_only_dbvt, hits_outside_box,
+        measure.mean_height);
     return 0;
 }
