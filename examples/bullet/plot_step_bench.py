@@ -43,8 +43,9 @@ def main():
         axis.set_ylabel("ms per step (steady state)")
         axis.set_title(f"Bullet pile: {title}")
         axis.grid(axis="y", alpha=0.3)
-    axes[0].legend(fontsize=8)
-    fig.tight_layout()
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper center", ncol=len(broadphases), fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.92))
     fig.savefig(args.out, dpi=110)
 
 

@@ -46,7 +46,8 @@ public:
         inner_->destroyProxy(proxy, dispatcher);
         broad_ms += ms_since(start);
     }
-    void setAabb(btBroadphaseProxy* proxy, const btVector3& min, const btVector3& max, btDispatcher* dispatcher) override {
+    void setAabb(btBroadphaseProxy* proxy, const btVector3& min, const btVector3& max,
+                 btDispatcher* dispatcher) override {
         const auto start = Clock::now();
         inner_->setAabb(proxy, min, max, dispatcher);
         broad_ms += ms_since(start);
