@@ -42,6 +42,9 @@ run_step("configure the find_package consumer"
 run_step("build the find_package consumer"
   ${CMAKE_COMMAND} --build ${SCRATCH_DIR}/installed-build --parallel 2)
 run_step("run the find_package consumer" ${SCRATCH_DIR}/installed-build/consumer)
+if(EXISTS ${SCRATCH_DIR}/installed-build/bullet_consumer)
+  run_step("run the find_package consumer of smb::bullet" ${SCRATCH_DIR}/installed-build/bullet_consumer)
+endif()
 
 run_step("configure the FetchContent consumer"
   ${CMAKE_COMMAND} -S ${CONSUMER_DIR}/fetched -B ${SCRATCH_DIR}/fetched-build

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A Bullet rigid-body scene for the broad phase to work on: boxes and spheres poured onto a
+// static floor between static walls, a kinematic plough pushing through them, and bodies taken
+// out and dropped in again as it runs. The broad phase is the caller's: the scene runs the same
+// with btDbvtBroadphase, btAxisSweep3 or smb::bullet::Broadphase.
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cstddef>
+#include <memory>
+#include <random>
+#include <vector>
+
+namespace smb::examples {
+
+struct PileSettings {
+    std::size_t bodies = 2000;
+    unsigned seed = 1;
+    /// Every `churn_every` steps, `churn` bodies are taken out and as many dropped in from above
+    /// (0: never).
+    int churn_every = 25;
+    std::size_t churn = 20;
+    /// The plough moves only while true.
+    bool plough = true;
+};
+
+/// What the pile looks like at one instant.
+struct PileMeasure {
+    double mean_height = 0;    ///< of the dynamic bodies' centres
+    std::size_t contacts = 0;  ///< contact points in every manifold
+    std::size_t manifolds = 0;
+    double kinetic_energy = 0;  ///< translational and rotational, of the dynamic bodies
+};
+
+class PileScene {
+public:
+    PileScene(btBroadphaseInterface& broadphase, const PileSettings& settings);
+    ~PileScene();
+    PileScene(const PileScene&) = delete;
+    PileScene& operator=(const PileScene&) = delete;
+
+    /// Moves the plough, takes out and drops in bodies when it is time, and steps the world by
+    /// 1/60 s.
+    void step();
+    [[nodiscard]] PileMeasure measure() const;
+
+    [[nodiscard]] btDiscreteDynamicsWorld& world() { return world_; }
+    [[nodiscard]] btCollisionDispatcher& dispatcher() { return dispatcher_; }
+    [[nodiscard]] int steps_done() const { return steps_; }
+    /// Half the width of the space between the walls.
+    [[nodiscard]] float half_width() const { return half_width_; }
+
+private:
+    btRigidBody& add_body(btCollisionShape& shape, float mass, const btVector3& origin);
+    void remove_body(std::size_t index);
+    void drop_body(const btVector3& origin);
+
+    PileSettings settings_;
+    btDefaultCollisionConfiguration configuration_;
+    btCollisionDispatcher dispatcher_;
+    btSequentialImpulseConstraintSolver solver_;
+    btDiscreteDynamicsWorld world_;
+    btBoxShape box_shape_;
+    btSphereShape sphere_shape_;
+    std::unique_ptr<btBoxShape> floor_shape_;
+    std::unique_ptr<btBoxShape> wall_shape_x_;
+    std::unique_ptr<btBoxShape> wall_shape_z_;
+    btBoxShape plough_shape_;
+    std::vector<std::unique_ptr<btDefaultMotionState>> motions_;
+    std::vector<std::unique_ptr<btRigidBody>> bodies_;
+    std::size_t fixed_bodies_ = 0;  ///< the first bodies: floor, walls, plough
+    btRigidBody* plough_ = nullptr;
+    float half_width_ = 0;
+    float plough_speed_ = 0.1f;
+    int steps_ = 0;
+    std::mt19937 random_;
+};
+
+}  // namespace smb::examples

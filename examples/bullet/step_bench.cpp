@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: MIT
+// Speed of a Bullet pile on each broad phase: the whole stepSimulation, and the broad phase's part
+// of it (calculateOverlappingPairs, and the setAabb calls btCollisionWorld makes for every object
+// at every step), in two scenes: an avalanche (bodies pouring down, a plough pushing through,
+// bodies taken out and dropped in) and a settled pile (most bodies asleep). One CSV row per broad
+// phase and scene, the first steps apart from the steady state.
+//
+//   smb_bullet_step_bench --bodies 10000 --broadphase smb,dbvt,sap
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pile_scene.hpp"
+#include "smb/bullet/broadphase.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+/// Forwards every call to the broad phase it wraps, timing the calls that make up the broad
+/// phase's work in a step.
+class TimedBroadphase : public btBroadphaseInterface {
+public:
+    explicit TimedBroadphase(std::unique_ptr<btBroadphaseInterface> inner) : inner_(std::move(inner)) {}
+
+    btBroadphaseProxy* createProxy(const btVector3& min, const btVector3& max, int shape, void* user, int group,
+                                   int mask, btDispatcher* dispatcher) override {
+        const auto start = Clock::now();
+        btBroadphaseProxy* proxy = inner_->createProxy(min, max, shape, user, group, mask, dispatcher);
+        broad_ms += ms_since(start);
+        return proxy;
+    }
+    void destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher) override {
+        const auto start = Clock::now();
+        inner_->destroyProxy(proxy, dispatcher);
+        broad_ms += ms_since(start);
+    }
+    void setAabb(btBroadphaseProxy* proxy, const btVector3& min, const btVector3& max,
+                 btDispatcher* dispatcher) override {
+        const auto start = Clock::now();
+        inner_->setAabb(proxy, min, max, dispatcher);
+        broad_ms += ms_since(start);
+    }
+    void getAabb(btBroadphaseProxy* proxy, btVector3& min, btVector3& max) const override {
+        inner_->getAabb(proxy, min, max);
+    }
+    void rayTest(const btVector3& from, const btVector3& to, btBroadphaseRayCallback& callback, const btVector3& min,
+                 const btVector3& max) override {
+        inner_->rayTest(from, to, callback, min, max);
+    }
+    void aabbTest(const btVector3& min, const btVector3& max, btBroadphaseAabbCallback& callback) override {
+        inner_->aabbTest(min, max, callback);
+    }
+    void calculateOverlappingPairs(btDispatcher* dispatcher) override {
+        const auto start = Clock::now();
+        inner_->calculateOverlappingPairs(dispatcher);
+        broad_ms += ms_since(start);
+    }
+    btOverlappingPairCache* getOverlappingPairCache() override { return inner_->getOverlappingPairCache(); }
+    const btOverlappingPairCache* getOverlappingPairCache() const override {
+        return static_cast<const btBroadphaseInterface&>(*inner_).getOverlappingPairCache();
+    }
+    void getBroadphaseAabb(btVector3& min, btVector3& max) const override { inner_->getBroadphaseAabb(min, max); }
+    void resetPool(btDispatcher* dispatcher) override { inner_->resetPool(dispatcher); }
+    void printStats() override { inner_->printStats(); }
+
+    double broad_ms = 0;
+
+private:
+    std::unique_ptr<btBroadphaseInterface> inner_;
+};
+
+std::unique_ptr<btBroadphaseInterface> make_broadphase(const std::string& name, std::size_t bodies) {
+    if (name == "smb") return std::make_unique<smb::bullet::Broadphase>();
+    if (name == "dbvt") return std::make_unique<btDbvtBroadphase>();
+    // Sweep and prune needs bounds: those of the pile with room to spare.
+    const float reach = static_cast<float>(std::sqrt(static_cast<double>(bodies))) * 0.7f + 20.0f;
+    const btVector3 min(-reach, -20, -reach);
+    const btVector3 max(reach, 200, reach);
+    if (bodies + 64 < 16384) return std::make_unique<btAxisSweep3>(min, max, static_cast<unsigned short>(bodies + 64));
+    return std::make_unique<bt32BitAxisSweep3>(min, max, static_cast<unsigned>(bodies + 64));
+}
+
+struct Window {
+    double step_ms = 0;
+    double broad_ms = 0;
+    int steps = 0;
+};
+
+/// Steps the scene `steps` times; the first `first` steps go to one window, the rest to another.
+void run(smb::examples::PileScene& scene, TimedBroadphase& timed, int steps, int first, Window& head, Window& tail) {
+    for (int i = 0; i < steps; ++i) {
+        Window& window = i < first ? head : tail;
+        timed.broad_ms = 0;
+        const auto start = Clock::now();
+        scene.step();
+        window.step_ms += ms_since(start);
+        window.broad_ms += timed.broad_ms;
+        ++window.steps;
+    }
+}
+
+void print_row(const std::string& name, std::size_t bodies, const char* scene, const char* part, const Window& w,
+               const smb::examples::PileScene& pile) {
+    const smb::examples::PileMeasure measure = pile.measure();
+    fmt::print("{},{},{},{},{},{:.3f},{:.3f},{},{:.3f}\n", name, bodies, scene, part, w.steps,
+               w.steps > 0 ? w.step_ms / w.steps : 0.0, w.steps > 0 ? w.broad_ms / w.steps : 0.0, measure.manifolds,
+               measure.mean_height);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"stepSimulation and broad-phase time of a Bullet pile on smb and Bullet's broad phases"};
+    std::size_t bodies = 10000;
+    int motion_steps = 150;
+    int settle_steps = 400;
+    int rest_steps = 50;
+    int first = 10;
+    std::vector<std::string> names{"smb", "dbvt", "sap"};
+    app.add_option("--bodies", bodies)->check(CLI::Range(1, 10'000'000));
+    app.add_option("--motion-steps", motion_steps, "steps of the avalanche timed")->check(CLI::PositiveNumber);
+    app.add_option("--settle-steps", settle_steps, "untimed steps for the pile to come to rest")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--rest-steps", rest_steps, "steps of the settled pile timed")->check(CLI::NonNegativeNumber);
+    app.add_option("--first", first, "steps reported apart as the first ones")->check(CLI::NonNegativeNumber);
+    app.add_option("--broadphase", names, "any of smb, dbvt, sap")->delimiter(',');
+    CLI11_PARSE(app, argc, argv);
+
+    fmt::print("broadphase,bodies,scene,part,steps,step_ms,broadphase_ms,manifolds,mean_height\n");
+    for (const std::string& name : names) {
+        {
+            smb::examples::PileSettings settings;
+            settings.bodies = bodies;
+            TimedBroadphase timed(make_broadphase(name, bodies));
+            smb::examples::PileScene scene(timed, settings);
+            Window head;
+            Window tail;
+            run(scene, timed, motion_steps, first, head, tail);
+            print_row(name, bodies, "avalanche", "first", head, scene);
+            print_row(name, bodies, "avalanche", "steady", tail, scene);
+        }
+        if (rest_steps > 0) {
+            smb::examples::PileSettings settings;
+            settings.bodies = bodies;
+            settings.plough = false;
+            settings.churn_every = 0;
+            TimedBroadphase timed(make_broadphase(name, bodies));
+            smb::examples::PileScene scene(timed, settings);
+            Window ignored;
+            Window settling;
+            run(scene, timed, settle_steps, settle_steps, ignored, settling);
+            Window head;
+            Window tail;
+            run(scene, timed, rest_steps, 0, head, tail);
+            print_row(name, bodies, "rest", "steady", tail, scene);
+        }
+        std::fflush(stdout);
+    }
+    return 0;
+}

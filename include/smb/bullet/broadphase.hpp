@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// smb as Bullet's broad phase: a btBroadphaseInterface that a btCollisionWorld or a
+// btDiscreteDynamicsWorld takes in place of btDbvtBroadphase or btAxisSweep3 (docs/bullet.md).
+
+#include <btBulletCollisionCommon.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "smb/pair.hpp"
+#include "smb/pair_events.hpp"
+#include "smb/settings.hpp"
+#include "smb/world.hpp"
+
+namespace smb::bullet {
+
+/// A Bullet broad phase backed by an smb::World of float boxes (Bullet's btScalar).
+///
+/// The switch: `smb::bullet::Broadphase broadphase;` where a program had `btDbvtBroadphase
+/// broadphase;`, and the same pointer handed to the world.
+///
+/// Pairs: after calculateOverlappingPairs the pair cache holds exactly the pairs of proxies whose
+/// current AABBs overlap (closed: touching faces overlap) and that Bullet's filtering lets pair,
+/// each once. A pair enters the cache (addOverlappingPair) at the step its boxes begin to
+/// overlap and leaves it (removeOverlappingPair, with the dispatcher, so that its contact
+/// manifold is freed) at the step they stop; in between it stays, with its manifold. Bullet's own
+/// broad phases keep pairs of fattened boxes and drop them lazily; this one holds no fattening.
+///
+/// Filtering, as Bullet's pair cache decides it: while the cache has no overlap filter callback,
+/// proxies a and b pair when (a.group & b.mask) && (b.group & a.mask), read from the proxies at
+/// every calculateOverlappingPairs (changing them in between is seen); smb applies these bits in
+/// its detection. A proxy whose group holds only StaticFilter and KinematicFilter bits and whose
+/// mask holds neither (what btCollisionWorld gives static and kinematic objects) can never pair
+/// with another such proxy; smb holds it as a static box while it does not move. While the cache
+/// has a filter callback, the bits are not used (Bullet ignores them then too) and the callback
+/// decides every overlapping pair, at every step.
+///
+/// Queries: rayTest reports the proxies whose boxes, grown by the query's (aabbMin, aabbMax) as
+/// btDbvt grows them, the ray from rayFrom towards rayTo enters within a distance
+/// callback.m_lambda_max (Bullet's callbacks set it to |rayTo - rayFrom|), nearest first; it
+/// stops when the callback's process() returns false or the next entry lies past m_lambda_max
+/// (read again after each call, so a callback that shrinks it cuts the test short). aabbTest
+/// reports the proxies whose boxes overlap the query box, and stops likewise when process()
+/// returns false. Proxies created inside a callback are not reported by the test under way;
+/// proxies destroyed inside it are not reported afterwards.
+///
+/// Errors: an AABB with NaN, infinity or min > max gives smb::InvalidBoxError, a proxy that this
+/// broad phase did not create, or destroyed, smb::UnknownIdError; either changes nothing. A
+/// destroyed proxy's memory is kept for the next proxy created after the following
+/// calculateOverlappingPairs, so a stale pointer is recognised until then (and names that new
+/// proxy afterwards, as with btAxisSweep3's pool).
+///
+/// Not thread-safe, as Bullet's broad phases.
+class Broadphase : public btBroadphaseInterface {
+public:
+    /// `pair_cache`: the cache to maintain, as btDbvtBroadphase takes it (not owned; it must
+    /// outlive the broad phase). Null: a btHashedOverlappingPairCache of its own.
+    explicit Broadphase(const WorldSettings& settings = {}, btOverlappingPairCache* pair_cache = nullptr);
+    ~Broadphase() override;
+    Broadphase(const Broadphase&) = delete;
+    Broadphase& operator=(const Broadphase&) = delete;
+
+    btBroadphaseProxy* createProxy(const btVector3& aabbMin, const btVector3& aabbMax, int shapeType, void* userPtr,
+                                   int collisionFilterGroup, int collisionFilterMask,
+                                   btDispatcher* dispatcher) override;
+    void destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher) override;
+    void setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax,
+                 btDispatcher* dispatcher) override;
+    void getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const override;
+    void rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
+                 const btVector3& aabbMin = btVector3(0, 0, 0), const btVector3& aabbMax = btVector3(0, 0, 0)) override;
+    void aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, btBroadphaseAabbCallback& callback) override;
+    void calculateOverlappingPairs(btDispatcher* dispatcher) override;
+    btOverlappingPairCache* getOverlappingPairCache() override { return cache_; }
+    const btOverlappingPairCache* getOverlappingPairCache() const override { return cache_; }
+    /// The union of every proxy's box; (0, 0, 0) twice when there is none.
+    void getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const override;
+    /// With no proxy left, releases the memory the detection holds.
+    void resetPool(btDispatcher* dispatcher) override;
+    void printStats() override;
+
+    /// Proxies alive.
+    [[nodiscard]] std::size_t size() const noexcept { return live_; }
+    /// The smb world behind the broad phase (read only: its boxes are the proxies' boxes under
+    /// the proxies' m_uniqueId).
+    [[nodiscard]] const World<float, 3>& world() const noexcept { return world_; }
+
+private:
+    struct Proxy;
+
+    /// The live proxy behind `proxy`; UnknownIdError for any other pointer.
+    Proxy& own(const btBroadphaseProxy* proxy) const;
+    /// The live proxy under `id`, or null (destroyed, possibly inside a callback).
+    [[nodiscard]] Proxy* live(BoxId id) const noexcept;
+    void flush_moves();
+    void sync_filters();
+    void apply_pair_events(btDispatcher* dispatcher);
+    void settle_restless_statics();
+    void set_callback_mode(bool callback_mode);
+
+    World<float, 3> world_;
+    PairEvents events_;
+    std::vector<Pair> pairs_;
+    std::unique_ptr<btOverlappingPairCache> owned_cache_;
+    btOverlappingPairCache* cache_ = nullptr;
+
+    /// Slot i holds the proxy whose m_uniqueId is i, or null.
+    std::vector<std::unique_ptr<Proxy>> slots_;
+    std::vector<std::uint32_t> free_ids_;
+    /// Ids destroyed since the last detection: their ended pairs are still to come from the
+    /// events, so they are not given out again before it.
+    std::vector<std::uint32_t> retired_ids_;
+    std::vector<std::uint32_t> moved_;
+    std::vector<BoxId> move_ids_;
+    std::vector<Box<float, 3>> move_boxes_;
+    /// Static-class proxies held dynamic because they moved lately.
+    std::vector<std::uint32_t> restless_;
+    std::size_t live_ = 0;
+    /// Something changed since the last detection (a box, a proxy, a filter).
+    bool changed_ = true;
+    bool callback_mode_ = false;
+};
+
+}  // namespace smb::bullet

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// What the broad phase keeps per proxy beside Bullet's own fields.
+
+#include <cstdint>
+
+#include "smb/box.hpp"
+#include "smb/bullet/broadphase.hpp"
+#include "smb/errors.hpp"
+#include "smb/filter.hpp"
+
+namespace smb::bullet {
+
+struct Broadphase::Proxy : btBroadphaseProxy {
+    /// The filter smb holds for this box (the default while the cache has a filter callback).
+    Filter filter{};
+    /// Steps since the box last moved, for a static-class proxy held dynamic (restless_).
+    std::uint32_t calm_steps = 0;
+    bool alive = false;
+    /// Listed in moved_ since the last flush.
+    bool moved = false;
+    /// Its bits keep it from pairing with any other proxy of its kind (Bullet's static and
+    /// kinematic objects).
+    bool static_class = false;
+    /// smb holds it as a static box.
+    bool held_static = false;
+    /// Listed in restless_.
+    bool restless = false;
+};
+
+namespace detail {
+
+/// Static and kinematic objects as btCollisionWorld files them (group StaticFilter, mask every bit
+/// but StaticFilter), and any proxy whose group holds only StaticFilter and KinematicFilter bits
+/// and whose mask holds neither. For any two such proxies a and b, a.group & b.mask is 0 or
+/// b.group & a.mask is 0, so Bullet never pairs them and smb may hold both as static boxes.
+[[nodiscard]] inline bool is_static_class(int group, int mask) noexcept {
+    constexpr int fixed = btBroadphaseProxy::StaticFilter | btBroadphaseProxy::KinematicFilter;
+    if (group == btBroadphaseProxy::StaticFilter) return (mask & btBroadphaseProxy::StaticFilter) == 0;
+    return group != 0 && (group & ~fixed) == 0 && (mask & fixed) == 0;
+}
+
+[[nodiscard]] inline Filter filter_of(int group, int mask) noexcept {
+    return Filter{static_cast<std::uint32_t>(group), static_cast<std::uint32_t>(mask)};
+}
+
+[[nodiscard]] inline Box<float, 3> box_of(const btVector3& min, const btVector3& max) noexcept {
+    return Box<float, 3>{{min.x(), min.y(), min.z()}, {max.x(), max.y(), max.z()}};
+}
+
+/// The box, or InvalidBoxError naming `what` when it has NaN, infinity or min > max.
+[[nodiscard]] Box<float, 3> checked_box(const btVector3& min, const btVector3& max, const char* what);
+
+}  // namespace detail
+}  // namespace smb::bullet
