@@ -2,7 +2,11 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS smb EXPORT smbTargets
+set(smb_installed_targets smb)
+if(TARGET smb_mpi)
+  list(APPEND smb_installed_targets smb_mpi)
+endif()
+install(TARGETS ${smb_installed_targets} EXPORT smbTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
