@@ -95,7 +95,8 @@ void AxialRegions<Real, Dim>::recut(MPI_Comm comm, std::span<const box_type> box
             for (int j = 0; j < cuts_per_group; ++j) {
                 const std::size_t c = static_cast<std::size_t>(g) * static_cast<std::size_t>(cuts_per_group) + j;
                 search.group[c] = g;
-                search.target[c] = totals[g] * static_cast<unsigned long long>(j + 1) / static_cast<unsigned long long>(slabs);
+                search.target[c] =
+                    totals[g] * static_cast<unsigned long long>(j + 1) / static_cast<unsigned long long>(slabs);
                 if (totals[g] == 0) {  // an empty group: any plane will do
                     search.lower[c] = search.upper[c] = Real(0);
                     search.done[c] = 1;
@@ -114,15 +115,19 @@ void AxialRegions<Real, Dim>::recut(MPI_Comm comm, std::span<const box_type> box
             bool any_active = false;
             for (std::size_t c = 0; c < cut_count; ++c) {
                 middle[c] = search.lower[c] * Real(0.5) + search.upper[c] * Real(0.5);
-                if (!search.done[c] && !(search.lower[c] < middle[c] && middle[c] < search.upper[c])) search.done[c] = 1;
+                if (!search.done[c] && !(search.lower[c] < middle[c] && middle[c] < search.upper[c]))
+                    search.done[c] = 1;
                 any_active = any_active || !search.done[c];
                 const int g = search.group[c];
                 const auto first = values.begin() + static_cast<std::ptrdiff_t>(offsets[g]);
                 const auto last = values.begin() + static_cast<std::ptrdiff_t>(offsets[g + 1]);
-                below[c] = search.done[c] ? 0 : static_cast<unsigned long long>(std::lower_bound(first, last, middle[c]) - first);
+                below[c] = search.done[c]
+                               ? 0
+                               : static_cast<unsigned long long>(std::lower_bound(first, last, middle[c]) - first);
             }
             if (!any_active) break;
-            MPI_Allreduce(MPI_IN_PLACE, below.data(), static_cast<int>(cut_count), MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+            MPI_Allreduce(MPI_IN_PLACE, below.data(), static_cast<int>(cut_count), MPI_UNSIGNED_LONG_LONG, MPI_SUM,
+                          comm);
             for (std::size_t c = 0; c < cut_count; ++c) {
                 if (search.done[c]) continue;
                 if (below[c] >= search.target[c]) {
@@ -198,7 +203,8 @@ Box<double, Dim> AxialRegions<Real, Dim>::bounds(int region) const {
         const Real* planes = cuts_of(axis, group);
         const int s = slab[axis];
         extent.min[axis] = s == 0 ? -std::numeric_limits<double>::infinity() : static_cast<double>(planes[s - 1]);
-        extent.max[axis] = s == per_axis_[axis] - 1 ? std::numeric_limits<double>::infinity() : static_cast<double>(planes[s]);
+        extent.max[axis] =
+            s == per_axis_[axis] - 1 ? std::numeric_limits<double>::infinity() : static_cast<double>(planes[s]);
         group = group * per_axis_[axis] + s;
     }
     return extent;

@@ -14,10 +14,10 @@ namespace smb::mpi::detail {
 
 /// What each rank found in its own input, to be summed over the ranks.
 struct LocalInputFindings {
-    bool lengths_differ = false;       ///< ids and boxes of different lengths
-    bool has_invalid_box = false;      ///< a box with NaN, infinity or min > max
-    BoxId smallest_invalid_id = 0;     ///< the smallest id of such a box
-    bool ids_changed = false;          ///< the ids differ from the last step's
+    bool lengths_differ = false;    ///< ids and boxes of different lengths
+    bool has_invalid_box = false;   ///< a box with NaN, infinity or min > max
+    BoxId smallest_invalid_id = 0;  ///< the smallest id of such a box
+    bool ids_changed = false;       ///< the ids differ from the last step's
 };
 
 /// What the ranks found together.

@@ -99,7 +99,8 @@ void DistributedState<Real, Dim>::agree_and_balance(std::span<const BoxId> ids, 
     }
     // An id set that is the same, in the same order, as the last step's cannot hold a new
     // repeat; anything else (an insertion, a removal, a box moved between ranks) is checked.
-    local.ids_changed = !has_checked_ids_ || !std::equal(ids.begin(), ids.end(), checked_ids_.begin(), checked_ids_.end());
+    local.ids_changed =
+        !has_checked_ids_ || !std::equal(ids.begin(), ids.end(), checked_ids_.begin(), checked_ids_.end());
     const GlobalInputFindings global = agree_on_input(comm_, local, n, region_counts);
     stats_.id_bytes_sent = 0;
     if (global.ids_changed_anywhere) stats_.id_bytes_sent = check_ids_unique(comm_, ids);
@@ -107,7 +108,8 @@ void DistributedState<Real, Dim>::agree_and_balance(std::span<const BoxId> ids, 
     has_checked_ids_ = true;
 
     const double mean = static_cast<double>(global.total_boxes) / static_cast<double>(ranks_);
-    const unsigned long long most = region_counts.empty() ? 0 : *std::max_element(region_counts.begin(), region_counts.end());
+    const unsigned long long most =
+        region_counts.empty() ? 0 : *std::max_element(region_counts.begin(), region_counts.end());
     stats_.imbalance = mean > 0 ? static_cast<double>(most) / mean : 0;
     stats_.recut = !regions_.has_cuts() || stats_.imbalance > settings_.rebalance_threshold;
     if (stats_.recut) {
@@ -119,7 +121,7 @@ void DistributedState<Real, Dim>::agree_and_balance(std::span<const BoxId> ids, 
 template <std::floating_point Real, int Dim>
 void DistributedState<Real, Dim>::send_boxes_to_regions(std::span<const BoxId> ids, std::span<const box_type> boxes) {
     using Record = BoxRecord<Real, Dim>;
-    std::vector<int> destinations;   // the regions of each box, box after box
+    std::vector<int> destinations;  // the regions of each box, box after box
     std::vector<std::size_t> first(boxes.size() + 1, 0);
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         regions_.regions_of(boxes[i], destinations);
@@ -132,7 +134,8 @@ void DistributedState<Real, Dim>::send_boxes_to_regions(std::span<const BoxId> i
     std::vector<Record> send(destinations.size());
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         for (std::size_t d = first[i]; d < first[i + 1]; ++d) {
-            send[static_cast<std::size_t>(fill[static_cast<std::size_t>(destinations[d])]++)] = Record{ids[i], boxes[i]};
+            send[static_cast<std::size_t>(fill[static_cast<std::size_t>(destinations[d])]++)] =
+                Record{ids[i], boxes[i]};
         }
     }
     std::vector<int> receive_counts;
@@ -183,7 +186,8 @@ std::vector<Pair> DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
     std::vector<int> fill(counts.size(), 0);
     std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
     std::vector<Pair> send(kept.size());
-    for (const Addressed& item : kept) send[static_cast<std::size_t>(fill[static_cast<std::size_t>(item.destination)]++)] = item.pair;
+    for (const Addressed& item : kept)
+        send[static_cast<std::size_t>(fill[static_cast<std::size_t>(item.destination)]++)] = item.pair;
     stats_.pairs_found = both ? 0 : kept.size();
     if (both) {
         for (std::size_t i = 0; i < kept.size(); ++i) {

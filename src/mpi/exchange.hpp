@@ -25,7 +25,9 @@ std::vector<Record> all_to_all(MPI_Comm comm, const std::vector<Record>& send, c
     std::vector<int> send_displacements(ranks, 0), receive_displacements(ranks, 0);
     std::exclusive_scan(send_counts.begin(), send_counts.end(), send_displacements.begin(), 0);
     std::exclusive_scan(receive_counts.begin(), receive_counts.end(), receive_displacements.begin(), 0);
-    const std::size_t total = ranks == 0 ? 0 : static_cast<std::size_t>(receive_displacements.back()) + static_cast<std::size_t>(receive_counts.back());
+    const std::size_t total = ranks == 0 ? 0
+                                         : static_cast<std::size_t>(receive_displacements.back()) +
+                                               static_cast<std::size_t>(receive_counts.back());
     std::vector<Record> received(total);
     MPI_Datatype record_type = MPI_DATATYPE_NULL;
     MPI_Type_contiguous(static_cast<int>(sizeof(Record)), MPI_BYTE, &record_type);

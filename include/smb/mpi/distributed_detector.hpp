@@ -41,18 +41,18 @@ struct DistributedSettings {
 
 /// What one distributed detect() did on this rank; the byte counts are what this rank sent.
 struct DistributedStats {
-    std::size_t boxes_passed = 0;    ///< boxes this rank passed in
-    std::size_t boxes_in_region = 0; ///< boxes this rank received for its region, ghosts included
-    std::size_t boxes_owned = 0;     ///< of those, the boxes whose centre lies in the region
-    std::size_t pairs_found = 0;     ///< pairs this rank's region kept (each pair in one region)
-    std::size_t pairs_received = 0;  ///< pairs handed to this rank (the size of the result)
-    std::size_t box_bytes_sent = 0;  ///< bytes of boxes (id and coordinates) sent to the regions
-    std::size_t pair_bytes_sent = 0; ///< bytes of pairs sent to their holders
-    std::size_t id_bytes_sent = 0;   ///< bytes of ids sent for the duplicate check (0 when no id set changed)
-    bool recut = false;              ///< whether the regions were cut again this step
-    double imbalance = 0;            ///< largest region population over the mean, before any recut
-    double total_seconds = 0;        ///< wall-clock seconds of the call on this rank
-    double local_detect_seconds = 0; ///< of which the Detector inside the region
+    std::size_t boxes_passed = 0;     ///< boxes this rank passed in
+    std::size_t boxes_in_region = 0;  ///< boxes this rank received for its region, ghosts included
+    std::size_t boxes_owned = 0;      ///< of those, the boxes whose centre lies in the region
+    std::size_t pairs_found = 0;      ///< pairs this rank's region kept (each pair in one region)
+    std::size_t pairs_received = 0;   ///< pairs handed to this rank (the size of the result)
+    std::size_t box_bytes_sent = 0;   ///< bytes of boxes (id and coordinates) sent to the regions
+    std::size_t pair_bytes_sent = 0;  ///< bytes of pairs sent to their holders
+    std::size_t id_bytes_sent = 0;    ///< bytes of ids sent for the duplicate check (0 when no id set changed)
+    bool recut = false;               ///< whether the regions were cut again this step
+    double imbalance = 0;             ///< largest region population over the mean, before any recut
+    double total_seconds = 0;         ///< wall-clock seconds of the call on this rank
+    double local_detect_seconds = 0;  ///< of which the Detector inside the region
 };
 
 namespace detail {
