@@ -62,12 +62,16 @@ void deal_rows(const io::SceneFrame<Dim>* frame, int rank, int ranks, std::vecto
         const std::size_t n = frame->ids.size();
         rows.resize(n);
         for (int r = 0; r < ranks; ++r) {
-            counts[static_cast<std::size_t>(r)] = static_cast<int>((n + static_cast<std::size_t>(ranks - 1 - r)) / static_cast<std::size_t>(ranks));
+            counts[static_cast<std::size_t>(r)] =
+                static_cast<int>((n + static_cast<std::size_t>(ranks - 1 - r)) / static_cast<std::size_t>(ranks));
         }
-        for (int r = 1; r < ranks; ++r) displacements[static_cast<std::size_t>(r)] = displacements[static_cast<std::size_t>(r - 1)] + counts[static_cast<std::size_t>(r - 1)];
+        for (int r = 1; r < ranks; ++r)
+            displacements[static_cast<std::size_t>(r)] =
+                displacements[static_cast<std::size_t>(r - 1)] + counts[static_cast<std::size_t>(r - 1)];
         std::vector<int> fill = displacements;
         for (std::size_t i = 0; i < n; ++i) {
-            rows[static_cast<std::size_t>(fill[i % static_cast<std::size_t>(ranks)]++)] = Row<Dim>{frame->ids[i], frame->boxes[i]};
+            rows[static_cast<std::size_t>(fill[i % static_cast<std::size_t>(ranks)]++)] =
+                Row<Dim>{frame->ids[i], frame->boxes[i]};
         }
     }
     int mine = 0;
@@ -89,7 +93,9 @@ std::vector<Pair> gather_pairs(const std::vector<Pair>& mine, int rank, int rank
     int count = static_cast<int>(mine.size());
     std::vector<int> counts(static_cast<std::size_t>(ranks), 0), displacements(counts.size(), 0);
     MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-    for (int r = 1; r < ranks; ++r) displacements[static_cast<std::size_t>(r)] = displacements[static_cast<std::size_t>(r - 1)] + counts[static_cast<std::size_t>(r - 1)];
+    for (int r = 1; r < ranks; ++r)
+        displacements[static_cast<std::size_t>(r)] =
+            displacements[static_cast<std::size_t>(r - 1)] + counts[static_cast<std::size_t>(r - 1)];
     std::vector<Pair> all(rank == 0 ? static_cast<std::size_t>(displacements.back() + counts.back()) : 0);
     MPI_Datatype pair_type = MPI_DATATYPE_NULL;
     MPI_Type_contiguous(static_cast<int>(sizeof(Pair)), MPI_BYTE, &pair_type);
