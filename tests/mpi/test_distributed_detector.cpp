@@ -20,13 +20,14 @@ constexpr int scene_boxes = 200;
 constexpr int steps = 8;
 #else
 constexpr int scene_boxes = 500;
-constexpr int steps = 20;
+constexpr int steps = 12;
 #endif
 
 template <class DetectorT>
 class DistributedDetection : public ::testing::Test {};
 
-using DetectorTypes = ::testing::Types<DistributedDetector3d, DistributedDetector2f, DistributedDetector2d>;
+using DetectorTypes =
+    ::testing::Types<DistributedDetector3d, DistributedDetector3f, DistributedDetector2f, DistributedDetector2d>;
 TYPED_TEST_SUITE(DistributedDetection, DetectorTypes);
 
 /// Runs one step and checks every rank's pairs against brute force: the union is exact, each
