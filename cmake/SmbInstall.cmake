@@ -2,11 +2,7 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(smb_installed_targets smb)
-if(TARGET smb_mpi)
-  list(APPEND smb_installed_targets smb_mpi)
-endif()
-install(TARGETS ${smb_installed_targets} EXPORT smbTargets
+install(TARGETS smb EXPORT smbTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
@@ -26,4 +22,11 @@ install(FILES ${PROJECT_BINARY_DIR}/smbConfig.cmake ${PROJECT_BINARY_DIR}/smbCon
 
 if(SMB_BUILD_TOOLS AND TARGET smb_cli)
   install(TARGETS smb_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+
+# smb::mpi, where it was built (smbConfig.cmake finds MPI for it).
+if(TARGET smb_mpi)
+  install(TARGETS smb_mpi EXPORT smbTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 endif()
