@@ -30,3 +30,10 @@ install(FILES ${PROJECT_BINARY_DIR}/smbConfig.cmake ${PROJECT_BINARY_DIR}/smbCon
 if(SMB_BUILD_TOOLS AND TARGET smb_cli)
   install(TARGETS smb_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
+
+# smb::mpi, where it was built (smbConfig.cmake finds MPI for it).
+if(TARGET smb_mpi)
+  install(TARGETS smb_mpi EXPORT smbTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+endif()

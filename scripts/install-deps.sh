@@ -29,6 +29,9 @@ packages=(
   libbullet-dev
   libbox2d-dev
   libcgal-dev
+  # distributed detection (smb::mpi, tests/mpi/): OpenMPI and its mpirun
+  libopenmpi-dev
+  openmpi-bin
 )
 
 missing=()

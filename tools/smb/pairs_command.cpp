@@ -12,6 +12,9 @@
 #include <string>
 #include <vector>
 
+#ifdef SMB_CLI_HAS_MPI
+#include "distributed_pairs.hpp"
+#endif
 #include "event_csv.hpp"
 #include "file_streams.hpp"
 #include "option_checks.hpp"
@@ -102,6 +105,13 @@ PairsCommand::PairsCommand(CLI::App& parent)
             return std::string();
         })
         ->excludes(events);
+#ifdef SMB_CLI_HAS_MPI
+    app_->add_flag("--distributed", distributed_,
+                   "find the pairs over the ranks of an MPI run (mpirun -np P smb pairs --distributed ...): rank 0 "
+                   "reads the scene and deals its rows round-robin, rank 0 writes the same pair CSV")
+        ->excludes(events)
+        ->excludes("--periodic");
+#endif
     app_->footer([] {
         return fmt::format(
             "Scene CSV: header {} (3D) or {} (2D); one row per box per frame, frame numbers "
@@ -121,6 +131,9 @@ PairsCommand::PairsCommand(CLI::App& parent)
 }
 
 int PairsCommand::run() const {
+#ifdef SMB_CLI_HAS_MPI
+    if (distributed_) return run_distributed_pairs(input_, output_);
+#endif
     // Run without --input from a terminal, pairs would wait for typed input without a word.
     if (input_ == "-" && ::isatty(STDIN_FILENO) == 1) {
         std::cerr << "smb pairs: reading a scene CSV from standard input (end it with Ctrl-D; "

@@ -24,6 +24,7 @@ private:
     std::size_t pairs_in_memory_ = std::size_t{1} << 24;  ///< 256 MiB of pairs
     bool events_ = false;                                 ///< the event CSV instead of the pair CSV
     std::string periodic_;                                ///< --periodic X0:X1,Y0:Y1[,Z0:Z1]: the periodic pair CSV
+    bool distributed_ = false;                            ///< --distributed: over the MPI ranks (smb::mpi)
 };
 
 }  // namespace smb::cli

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// MPI_Alltoallv of trivially copyable records, sent as one contiguous MPI type per record so
+// that the counts are records, not bytes (MPI's counts are ints).
+
+#include <mpi.h>
+
+#include <cstddef>
+#include <numeric>
+#include <type_traits>
+#include <vector>
+
+namespace smb::mpi::detail {
+
+/// Sends send[displacement(r) .. + send_counts[r]) to rank r (the records grouped by
+/// destination, in rank order) and returns what every rank sent here, grouped by source in rank
+/// order; `receive_counts` gets how many came from each rank.
+template <class Record>
+std::vector<Record> all_to_all(MPI_Comm comm, const std::vector<Record>& send, const std::vector<int>& send_counts,
+                               std::vector<int>& receive_counts) {
+    static_assert(std::is_trivially_copyable_v<Record>);
+    const auto ranks = send_counts.size();
+    receive_counts.assign(ranks, 0);
+    MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm);
+    std::vector<int> send_displacements(ranks, 0), receive_displacements(ranks, 0);
+    std::exclusive_scan(send_counts.begin(), send_counts.end(), send_displacements.begin(), 0);
+    std::exclusive_scan(receive_counts.begin(), receive_counts.end(), receive_displacements.begin(), 0);
+    const std::size_t total = ranks == 0 ? 0
+                                         : static_cast<std::size_t>(receive_displacements.back()) +
+                                               static_cast<std::size_t>(receive_counts.back());
+    std::vector<Record> received(total);
+    MPI_Datatype record_type = MPI_DATATYPE_NULL;
+    MPI_Type_contiguous(static_cast<int>(sizeof(Record)), MPI_BYTE, &record_type);
+    MPI_Type_commit(&record_type);
+    MPI_Alltoallv(send.data(), send_counts.data(), send_displacements.data(), record_type, received.data(),
+                  receive_counts.data(), receive_displacements.data(), record_type, comm);
+    MPI_Type_free(&record_type);
+    return received;
+}
+
+/// Bytes of records among `counts` that leave this rank (the share sent to itself stays).
+template <class Record>
+std::size_t bytes_to_others(const std::vector<int>& counts, int rank) {
+    std::size_t records = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) {
+        if (static_cast<int>(r) != rank) records += static_cast<std::size_t>(counts[r]);
+    }
+    return records * sizeof(Record);
+}
+
+}  // namespace smb::mpi::detail
