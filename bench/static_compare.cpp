@@ -331,19 +331,19 @@ int main(int argc, char** argv) {
     std::size_t statics = 1000000;
     bool paired = false;
     bool terrain = false;
-    bool layers = false;
+    bool layers_paired = false;
     int steps = 10;
     for (int i = 1; i < argc; ++i) {
         const bool value = i + 1 < argc;
         if (std::strcmp(argv[i], "--paired") == 0) paired = true;
         if (std::strcmp(argv[i], "--terrain") == 0) terrain = true;
-        if (std::strcmp(argv[i], "--layers") == 0) layers = true;
+        if (std::strcmp(argv[i], "--layers") == 0) layers_paired = true;
         if (value && std::strcmp(argv[i], "--moving") == 0) moving = std::strtoull(argv[++i], nullptr, 10);
         if (value && std::strcmp(argv[i], "--statics") == 0) statics = std::strtoull(argv[++i], nullptr, 10);
         if (value && std::strcmp(argv[i], "--steps") == 0) steps = std::atoi(argv[++i]);
     }
     if (paired) return run_paired(moving, statics, steps, terrain);
-    if (layers) return run_layers_paired(moving, steps);
+    if (layers_paired) return run_layers_paired(moving, steps);
     auto nothing = [](std::span<const BoxId>) {};
     std::printf("moving %zu, statics %zu, steps %d (World<double, 3>; times in ms; first = load + detect)\n\n", moving,
                 statics, steps);
