@@ -11,7 +11,7 @@
 //   layers       twice the moving boxes in one cube, as two layers (categories 1 and 2, each
 //                with the mask of its own) that ignore each other; beside it the same boxes
 //                with no filters, and one layer alone
-// Usage: smb_static_compare [--moving N] [--statics N] [--steps S] [--paired [--terrain]]
+// Usage: smb_static_compare [--moving N] [--statics N] [--steps S] [--paired [--terrain]] [--layers]
 //   --paired     only the plain and statics scenes, in lockstep: each step runs both worlds,
 //                in alternating order, so that the load of a shared machine falls on both
 //                alike; prints their medians and the median of the per-step ratios
@@ -21,6 +21,10 @@
 //                triangles would), centred under the moving cube and far wider than it, its mean
 //                height in the middle of the cube: the moving boxes near the surface meet it,
 //                the others (most) meet no static
+//   --layers     only the layers scene, in lockstep: 2N boxes as two layers that ignore each
+//                other in one World, the same boxes unfiltered in another, and each layer in a
+//                World of its own (the separate detections, timed together); each step runs the
+//                three in rotating order and prints their medians and the medians of the ratios
 
 #include <algorithm>
 #include <chrono>
@@ -30,6 +34,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -45,6 +51,14 @@ using World = smb::World3d;
 using Env = smb::workload::DynamicEnvironment<3>;
 
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// This thread's CPU seconds: on a machine shared beyond its cores, the time a one-thread
+/// detection ran, where the wall clock also counts the time others held the core.
+double thread_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -211,6 +225,105 @@ int run_paired(std::size_t moving, std::size_t statics, int steps, bool terrain)
     return 0;
 }
 
+/// The boxes of `changes` whose id has parity `parity`: the changes of one layer.
+struct LayerChanges {
+    std::vector<BoxId> removed, updated, inserted;
+    std::vector<smb::Box3d> updated_boxes, inserted_boxes;
+
+    LayerChanges(const smb::workload::StepChanges<3>& changes, BoxId parity) {
+        for (const BoxId id : changes.removed_ids)
+            if (id % 2 == parity) removed.push_back(id);
+        for (std::size_t i = 0; i < changes.updated_ids.size(); ++i) {
+            if (changes.updated_ids[i] % 2 != parity) continue;
+            updated.push_back(changes.updated_ids[i]);
+            updated_boxes.push_back(changes.updated_boxes[i]);
+        }
+        for (std::size_t i = 0; i < changes.inserted_ids.size(); ++i) {
+            if (changes.inserted_ids[i] % 2 != parity) continue;
+            inserted.push_back(changes.inserted_ids[i]);
+            inserted_boxes.push_back(changes.inserted_boxes[i]);
+        }
+    }
+    void apply(World& world) const {
+        if (!removed.empty()) world.remove(removed);
+        if (!updated.empty()) world.update(updated, updated_boxes);
+        if (!inserted.empty()) world.insert(inserted, inserted_boxes);
+    }
+};
+
+void set_layers(World& world, std::span<const BoxId> ids) {
+    std::vector<smb::Filter> filters(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) filters[i] = ids[i] % 2 == 0 ? smb::Filter{1, 1} : smb::Filter{2, 2};
+    world.set_filter(ids, filters);
+}
+
+/// The layers scene in lockstep (--layers).
+int run_layers_paired(std::size_t moving, int steps) {
+    Env env(params(2 * moving, 3));
+    World unfiltered;
+    World layers;
+    World separate[2];
+    std::vector<smb::Pair> pairs;
+    std::vector<double> times[3], cpu[3], to_separate, to_unfiltered, cpu_to_separate, cpu_to_unfiltered;
+    std::size_t counts[3] = {0, 0, 0};
+    for (int s = -1; s < steps; ++s) {
+        const bool first = s < 0;
+        const auto& changes = first ? env.changes() : env.step();
+        const LayerChanges layer_changes[2] = {LayerChanges(changes, 0), LayerChanges(changes, 1)};
+        double t[3] = {0, 0, 0};
+        double c[3] = {0, 0, 0};
+        for (int turn = 0; turn < 3; ++turn) {
+            const int scene = (turn + (s + 3)) % 3;
+            const double cpu_start = thread_seconds();
+            const auto start = Clock::now();
+            if (scene == 0) {
+                pairs.clear();
+                smb::workload::apply_changes(changes, unfiltered);
+                unfiltered.detect(pairs);
+                counts[0] = pairs.size();
+            } else if (scene == 1) {
+                pairs.clear();
+                smb::workload::apply_changes(changes, layers);
+                set_layers(layers, changes.inserted_ids);
+                layers.detect(pairs);
+                counts[1] = pairs.size();
+            } else {
+                counts[2] = 0;
+                for (int l = 0; l < 2; ++l) {
+                    pairs.clear();
+                    layer_changes[l].apply(separate[l]);
+                    separate[l].detect(pairs);
+                    counts[2] += pairs.size();
+                }
+            }
+            t[scene] = since(start);
+            c[scene] = thread_seconds() - cpu_start;
+        }
+        if (first) continue;
+        for (int k = 0; k < 3; ++k) {
+            times[k].push_back(t[k]);
+            cpu[k].push_back(c[k]);
+        }
+        to_separate.push_back(t[1] / t[2]);
+        to_unfiltered.push_back(t[1] / t[0]);
+        cpu_to_separate.push_back(c[1] / c[2]);
+        cpu_to_unfiltered.push_back(c[1] / c[0]);
+    }
+    std::printf(
+        "layers, %zu boxes, %d steps, rotating order: unfiltered %.2f ms (%zu pairs), two layers filtered %.2f ms"
+        " (%zu pairs), each layer in its own world %.2f ms (%zu pairs); layers / separate: ratio of medians %.2f,"
+        " median of per-step ratios %.2f; layers / unfiltered: %.2f, %.2f\n",
+        2 * moving, steps, median(times[0]) * 1e3, counts[0], median(times[1]) * 1e3, counts[1], median(times[2]) * 1e3,
+        counts[2], median(times[1]) / median(times[2]), median(to_separate), median(times[1]) / median(times[0]),
+        median(to_unfiltered));
+    std::printf(
+        "  thread CPU: unfiltered %.2f ms, two layers filtered %.2f ms, each layer in its own world %.2f ms;"
+        " layers / separate: %.2f, %.2f; layers / unfiltered: %.2f, %.2f\n",
+        median(cpu[0]) * 1e3, median(cpu[1]) * 1e3, median(cpu[2]) * 1e3, median(cpu[1]) / median(cpu[2]),
+        median(cpu_to_separate), median(cpu[1]) / median(cpu[0]), median(cpu_to_unfiltered));
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -218,16 +331,19 @@ int main(int argc, char** argv) {
     std::size_t statics = 1000000;
     bool paired = false;
     bool terrain = false;
+    bool layers_paired = false;
     int steps = 10;
     for (int i = 1; i < argc; ++i) {
         const bool value = i + 1 < argc;
         if (std::strcmp(argv[i], "--paired") == 0) paired = true;
         if (std::strcmp(argv[i], "--terrain") == 0) terrain = true;
+        if (std::strcmp(argv[i], "--layers") == 0) layers_paired = true;
         if (value && std::strcmp(argv[i], "--moving") == 0) moving = std::strtoull(argv[++i], nullptr, 10);
         if (value && std::strcmp(argv[i], "--statics") == 0) statics = std::strtoull(argv[++i], nullptr, 10);
         if (value && std::strcmp(argv[i], "--steps") == 0) steps = std::atoi(argv[++i]);
     }
     if (paired) return run_paired(moving, statics, steps, terrain);
+    if (layers_paired) return run_layers_paired(moving, steps);
     auto nothing = [](std::span<const BoxId>) {};
     std::printf("moving %zu, statics %zu, steps %d (World<double, 3>; times in ms; first = load + detect)\n\n", moving,
                 statics, steps);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <map>
 #include <vector>
 
@@ -57,8 +58,28 @@ inline Filter random_filter(Random& random) {
     return f;
 }
 
+/// A filter from values that split the boxes into interaction classes: two layers that ignore
+/// each other ({1, 1}, {2, 2}), two sets that meet only across ({4, 8}, {8, 4}), a value that
+/// meets nothing present ({16, 32}), one that meets only the first layer's {1, 65} boxes
+/// ({64, 1}); now and then the default (which meets the first layer and the others of category 1)
+/// or mask 0.
+inline Filter layered_filter(Random& random) {
+    static constexpr Filter kValues[] = {{1, 1}, {2, 2}, {4, 8}, {8, 4}, {16, 32}, {64, 1}, {1, 65}, {2, 0}};
+    if (chance(random, 0.1)) return Filter{};
+    return kValues[uniform_index(random, std::size(kValues))];
+}
+
+/// A filter from more values than the interaction classes keep apart (80, every one passing
+/// with every other): the boxes are detected as one class.
+inline Filter many_valued_filter(Random& random) {
+    return Filter{static_cast<std::uint32_t>(1 | (uniform_index(random, 80) << 1)), 1};
+}
+
+enum class FilterValues { random, layered, many };
+
 struct Scenario {
     bool filters = true;
+    FilterValues values = FilterValues::random;
     double static_share = 0.0;  // boxes made static at the start
     bool predicate = false;
     int steps = 25;
@@ -95,7 +116,7 @@ protected:
         }
         for (auto& [id, e] : entries) {
             if (scenario.filters && chance(random, 0.5)) {
-                e.filter = random_filter(random);
+                e.filter = new_filter(random, scenario);
                 world.set_filter(id, e.filter);
             }
             if (chance(random, scenario.static_share)) {
@@ -153,7 +174,7 @@ protected:
         }
         for (auto& [id, e] : entries) {
             if (scenario.filters && chance(random, 0.02)) {
-                e.filter = random_filter(random);
+                e.filter = new_filter(random, scenario);
                 world.set_filter(id, e.filter);
             }
             if (scenario.static_share > 0 && chance(random, 0.005)) {
@@ -161,6 +182,18 @@ protected:
                 world.set_static(id, e.is_static);
             }
         }
+    }
+
+    [[nodiscard]] static Filter new_filter(Random& random, const Scenario& scenario) {
+        switch (scenario.values) {
+            case FilterValues::layered:
+                return layered_filter(random);
+            case FilterValues::many:
+                return many_valued_filter(random);
+            case FilterValues::random:
+                break;
+        }
+        return random_filter(random);
     }
 
     double space_ = 0;
@@ -176,6 +209,23 @@ TYPED_TEST(WorldFiltersTest, RandomFilterBitsWithLargeIdsAndCategoriesMatchBrute
     Scenario scenario;
     scenario.first_id = BoxId{1} << 40;
     this->run(scenario, 4);
+}
+
+TYPED_TEST(WorldFiltersTest, LayersAndSetsDetectedClassByClassMatchBruteForce) {
+    Scenario scenario;
+    scenario.values = FilterValues::layered;
+    for (std::uint64_t seed = 41; seed <= 42; ++seed) this->run(scenario, seed);
+    scenario.static_share = 0.3;
+    this->run(scenario, 43);
+    scenario.first_id = BoxId{1} << 40;
+    this->run(scenario, 44);
+}
+
+TYPED_TEST(WorldFiltersTest, MoreFilterValuesThanTheClassesKeepMatchBruteForce) {
+    Scenario scenario;
+    scenario.values = FilterValues::many;
+    scenario.static_share = 0.2;
+    this->run(scenario, 51);
 }
 
 TYPED_TEST(WorldFiltersTest, StaticsThatMoveLeaveAndTurnDynamicMatchBruteForce) {

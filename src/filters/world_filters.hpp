@@ -8,6 +8,8 @@
 // Detector detects an array; their pairs are filtered by index (filtered_report.hpp). The
 // statics stay out of it: each moving box meets them through its cache (static_contacts.hpp)
 // over a grid of the statics (static_grid.hpp), built again only when the statics change.
+// Where the filter values split the moving boxes into classes that cannot pair with each other
+// (interaction_classes.hpp), each class is detected on its own (class_detections.hpp) instead.
 //
 // The list of moving boxes keeps each box at its position from one detection to the next (a box
 // that leaves it is swap-removed, a box that joins it is appended), so the pipeline sees the
@@ -26,7 +28,9 @@
 #include "core/slot_renumbering.hpp"
 #include "core/stopwatch.hpp"
 #include "cuts/held_cut_pipeline.hpp"
+#include "filters/class_detections.hpp"
 #include "filters/filtered_report.hpp"
+#include "filters/interaction_classes.hpp"
 #include "filters/static_contacts.hpp"
 #include "filters/static_grid.hpp"
 #include "smb/filter.hpp"
@@ -52,8 +56,12 @@ public:
     [[nodiscard]] bool static_at(Slot slot) const noexcept {
         return slot < statics_flag_.size() && statics_flag_[slot];
     }
-    [[nodiscard]] HeldPrecision precision() const noexcept { return pipeline_.precision(); }
-    [[nodiscard]] std::size_t retested() const noexcept { return pipeline_.retested(); }
+    [[nodiscard]] HeldPrecision precision() const noexcept {
+        return split() ? class_detections_.precision() : pipeline_.precision();
+    }
+    [[nodiscard]] std::size_t retested() const noexcept {
+        return split() ? class_detections_.retested() : pipeline_.retested();
+    }
 
     void set_filter(Slot slot, const Filter& filter, std::size_t slot_count) {
         if (slot >= filters_.size() && filter == Filter{}) return;  // the default already
@@ -63,6 +71,7 @@ public:
         non_default_ += (filter != Filter{} ? 1 : 0) - (held != Filter{} ? 1 : 0);
         held = filter;
         if (statics_flag_[slot]) statics_changed_ = true;
+        if (filter_interacts(filter) && !classes_.knows(filter)) classes_stale_ = true;
         pending_.push_back(slot);
     }
 
@@ -110,6 +119,9 @@ public:
         pipeline_.clear();
         grid_.clear();
         contacts_.clear();
+        classes_.clear();
+        class_detections_.clear();
+        classes_stale_ = true;
         std::vector<Slot>().swap(moving_);
         std::vector<Slot>().swap(position_);
         std::vector<box_type>().swap(gathered_);
@@ -151,12 +163,15 @@ public:
         grow(known_);
         const bool statics_rebuilt = statics_changed_;
         if (statics_changed_) rebuild_statics(store);
+        if (classes_stale_ || (classes_.overflowed() && ++since_classes_ >= kClassesEvery)) rebuild_classes();
         gather(store);
         stats.update_seconds = update.seconds();
         stats.boxes = store.slot_count();
 
         const PairPredicate* predicate = predicate_ ? &predicate_ : nullptr;
-        if (gathered_.empty()) {
+        if (split()) {
+            class_detections_.detect(settings, output, predicate, stats);
+        } else if (gathered_.empty()) {
             pipeline_.detect_nothing(settings, output, stats);
         } else {
             const Stopwatch scan;
@@ -185,11 +200,31 @@ public:
                (pending_.capacity() + moving_.capacity() + position_.capacity()) * sizeof(Slot) +
                gathered_.capacity() * sizeof(box_type) + gathered_keys_.capacity() * sizeof(BoxId) +
                gathered_info_.capacity() * sizeof(IdFilter) + pipeline_.bytes_held() + grid_.bytes_held() +
-               contacts_.bytes_held();
+               contacts_.bytes_held() + classes_.bytes_held() + class_detections_.bytes_held();
     }
 
 private:
     static constexpr Slot kNowhere = kNoSlot;
+    /// Detections between two looks at the filter values once they overflowed the classes' table
+    /// (they may have become fewer since).
+    static constexpr std::size_t kClassesEvery = 64;
+
+    /// Whether the moving boxes are detected class by class.
+    [[nodiscard]] bool split() const noexcept { return classes_.count() > 1; }
+
+    void rebuild_classes() {
+        classes_.build(moving_.size(), [&](std::size_t i) { return filters_[moving_[i]]; });
+        classes_stale_ = false;
+        since_classes_ = 0;
+        if (split()) {
+            class_detections_.reset(classes_.count());
+            for (std::size_t i = 0; i < moving_.size(); ++i)
+                class_detections_.join(static_cast<Slot>(i), classes_.class_of(filters_[moving_[i]]));
+            pipeline_.clear();
+        } else {
+            class_detections_.clear();
+        }
+    }
 
     void grow(std::size_t slot_count) {
         if (filters_.size() < slot_count) filters_.resize(slot_count);
@@ -204,14 +239,19 @@ private:
     void refresh_moving(Slot s, bool alive) {
         const bool in = position_[s] != kNowhere;
         const bool wanted = alive && moves(s);
+        const bool known = classes_.knows(filters_[s]);
+        if (wanted && !known) classes_stale_ = true;  // the rebuild gives every box its class
+        const std::size_t class_now = wanted && known ? classes_.class_of(filters_[s]) : 0;
         if (wanted && !in) {
             position_[s] = static_cast<Slot>(moving_.size());
             moving_.push_back(s);
+            if (split()) class_detections_.join(position_[s], class_now);
             contacts_.push_back();
         } else if (!wanted && in) {
             remove_position(position_[s]);
         } else if (wanted) {
             contacts_.invalidate(position_[s]);
+            if (split()) class_detections_.change(position_[s], class_now);
         }
     }
 
@@ -220,6 +260,7 @@ private:
     void remove_position(Slot p, bool forget_slot = true) {
         if (forget_slot) position_[moving_[p]] = kNowhere;
         const Slot last = moving_.back();
+        if (split()) class_detections_.swap_remove(p, static_cast<Slot>(moving_.size() - 1));
         if (p + 1 != moving_.size()) {
             moving_[p] = last;
             position_[last] = p;
@@ -279,6 +320,15 @@ private:
     }
 
     void gather(const BoxStore<Real, Dim>& store) {
+        if (split()) {
+            class_detections_.gather(store, moving_, filters_, classes_);
+            // The statics' caches follow the list of moving boxes, position by position.
+            if (grid_.empty()) {
+                gathered_.clear();
+                gathered_info_.clear();
+                return;
+            }
+        }
         gathered_.resize(moving_.size());
         gathered_info_.resize(moving_.size());
         packed_ = true;
@@ -290,6 +340,10 @@ private:
         }
         if (!packed_) {
             std::vector<BoxId>().swap(gathered_keys_);
+            return;
+        }
+        if (split()) {
+            std::vector<BoxId>().swap(gathered_keys_);  // the classes hold their own keys
             return;
         }
         gathered_keys_.resize(moving_.size());
@@ -318,6 +372,10 @@ private:
     HeldCutPipeline<Real, Dim> pipeline_;
     StaticGrid<Real, Dim> grid_;
     StaticContacts<Real, Dim> contacts_;
+    InteractionClasses classes_;
+    bool classes_stale_ = true;  // a filter value the classes do not know came in
+    std::size_t since_classes_ = 0;
+    ClassDetections<Real, Dim> class_detections_;
 };
 
 }  // namespace smb::detail
