@@ -25,7 +25,8 @@ packages=(
   # libFuzzer targets (fuzz/, scripts/fuzz.sh): clang with its sanitizer and fuzzer runtimes
   clang-14
   libclang-rt-14-dev
-  # peers of the side-by-side benchmark (bench/peers/); optional, the build skips any missing
+  # Bullet: smb::bullet (src/bullet/, examples/bullet/) and a peer of the side-by-side benchmark;
+  # Box2D and CGAL: peers of that benchmark (bench/peers/). Optional: the build skips any missing
   libbullet-dev
   libbox2d-dev
   libcgal-dev
