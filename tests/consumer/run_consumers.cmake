@@ -32,6 +32,7 @@ run_step("configure smb alone"
   ${CMAKE_COMMAND} -S ${SMB_SOURCE_DIR} -B ${SCRATCH_DIR}/smb-build
     -DCMAKE_BUILD_TYPE=Debug -DCMAKE_INSTALL_PREFIX=${prefix}
     -DSMB_BUILD_TESTS=OFF -DSMB_BUILD_TOOLS=OFF -DSMB_BUILD_BENCHMARKS=OFF
+    -DSMB_BUILD_EXAMPLES=OFF -DSMB_BUILD_PYTHON=OFF
     ${compiler_args})
 run_step("build smb" ${CMAKE_COMMAND} --build ${SCRATCH_DIR}/smb-build --parallel 2)
 run_step("install smb" ${CMAKE_COMMAND} --install ${SCRATCH_DIR}/smb-build)
@@ -49,7 +50,10 @@ endif()
 run_step("configure the FetchContent consumer"
   ${CMAKE_COMMAND} -S ${CONSUMER_DIR}/fetched -B ${SCRATCH_DIR}/fetched-build
     -DCMAKE_BUILD_TYPE=Debug -DSMB_SOURCE_DIR=${SMB_SOURCE_DIR}
-    -DFETCHCONTENT_FULLY_DISCONNECTED=ON ${compiler_args})
+    -DFETCHCONTENT_FULLY_DISCONNECTED=ON
+    # The subproject's optional components are proven through the installed package above.
+    -DSMB_BUILD_BULLET=OFF -DSMB_BUILD_MPI=OFF
+    ${compiler_args})
 run_step("build the FetchContent consumer"
   ${CMAKE_COMMAND} --build ${SCRATCH_DIR}/fetched-build --parallel 2)
 run_step("run the FetchContent consumer" ${SCRATCH_DIR}/fetched-build/consumer)
