@@ -77,7 +77,30 @@ def _implementation(prefix, dim, dtype):
     return getattr(_smb, f"{prefix}{dim}{suffix}"), dtype
 
 
-class Detector:
+class _Readouts:
+    """What Detector and World both tell of their last detection and of themselves."""
+
+    @property
+    def stats(self):
+        """What the last detection did and cost: a dict of counts and seconds."""
+        return self._impl.stats
+
+    @property
+    def precision(self):
+        """What the last detection held: 'none', 'floats' or 'doubles'."""
+        return self._impl.precision
+
+    @property
+    def bytes_held(self):
+        """Heap bytes the object holds (a Detector's caller's array not counted)."""
+        return self._impl.bytes_held
+
+    @property
+    def threads(self):
+        return self._impl.threads
+
+
+class Detector(_Readouts):
     """The SMB broad phase over an array of boxes the caller keeps: box i is body i.
 
     Each detect() takes the whole array and returns every overlapping pair of indices. The
@@ -147,33 +170,14 @@ class Detector:
         self._impl.clear()
 
     @property
-    def stats(self):
-        """What the last detection did and cost: a dict of counts and seconds."""
-        return self._impl.stats
-
-    @property
-    def precision(self):
-        """What the last detection held: 'none', 'floats' or 'doubles'."""
-        return self._impl.precision
-
-    @property
-    def bytes_held(self):
-        """Heap bytes the detector holds (the caller's array not counted)."""
-        return self._impl.bytes_held
-
-    @property
     def skin(self):
         return self._impl.skin
-
-    @property
-    def threads(self):
-        return self._impl.threads
 
     def __repr__(self):
         return f"smb.Detector(dim={self.dim}, dtype={self.dtype.name}, skin={self.skin})"
 
 
-class World:
+class World(_Readouts):
     """A set of moving boxes under caller-chosen ids, and the SMB broad phase over them.
 
     Ids are non-negative integers below 2**63 (int64 on the way back). insert, update and
@@ -283,24 +287,6 @@ class World:
         """
         return self._impl.cast_ray(origin, direction, float(max_t), all)
 
-    @property
-    def stats(self):
-        """What the last detection did and cost: a dict of counts and seconds."""
-        return self._impl.stats
-
-    @property
-    def precision(self):
-        """What the last detection held: 'none', 'floats' or 'doubles'."""
-        return self._impl.precision
-
-    @property
-    def bytes_held(self):
-        """Heap bytes the world holds."""
-        return self._impl.bytes_held
-
-    @property
-    def threads(self):
-        return self._impl.threads
 
     def __repr__(self):
         return f"smb.World(dim={self.dim}, dtype={self.dtype.name}, size={len(self)})"

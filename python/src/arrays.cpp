@@ -226,11 +226,11 @@ std::vector<Filter> filter_values(py::handle categories, py::handle masks, std::
 py::array_t<std::int64_t> pair_array(std::vector<Pair>&& pairs) {
     static_assert(sizeof(Pair) == 2 * sizeof(std::int64_t), "a pair must be two ids to be handed over in place");
     auto* held = new std::vector<Pair>(std::move(pairs));
-    const py::capsule owner(held, [](void* p) { delete static_cast<std::vector<Pair>*>(p); });
+    const py::capsule keep_alive(held, [](void* p) { delete static_cast<std::vector<Pair>*>(p); });
     const auto count = static_cast<py::ssize_t>(held->size());
     const auto* first = reinterpret_cast<const std::int64_t*>(held->data());
     return py::array_t<std::int64_t>({count, py::ssize_t{2}}, {py::ssize_t{sizeof(Pair)}, py::ssize_t{8}}, first,
-                                     owner);
+                                     keep_alive);
 }
 
 py::array_t<std::int64_t> pair_array_copy(std::span<const Pair> pairs) {
@@ -241,9 +241,9 @@ py::array_t<std::int64_t> pair_array_copy(std::span<const Pair> pairs) {
 
 py::array_t<std::int64_t> id_result(std::vector<BoxId>&& ids) {
     auto* held = new std::vector<BoxId>(std::move(ids));
-    const py::capsule owner(held, [](void* p) { delete static_cast<std::vector<BoxId>*>(p); });
+    const py::capsule keep_alive(held, [](void* p) { delete static_cast<std::vector<BoxId>*>(p); });
     return py::array_t<std::int64_t>({static_cast<py::ssize_t>(held->size())}, {py::ssize_t{8}},
-                                     reinterpret_cast<const std::int64_t*>(held->data()), owner);
+                                     reinterpret_cast<const std::int64_t*>(held->data()), keep_alive);
 }
 
 #define SMB_PYTHON_INSTANTIATE(Real, Dim)                                       \
