@@ -52,7 +52,7 @@ public:
             diff_partitions(followed, threads);
         }
         settle_candidates();
-        sort_pairs_fast(scratch_.ended, sort_buffer_);
+        sort_pairs_fast(scratch_.ended, sort_scratch_);
 
         // Nothing below throws.
         std::swap(previous_, next_);
@@ -71,7 +71,7 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return sizeof(*this) + previous_.bytes_held() + next_.bytes_held() + scratch_.bytes_held() +
-               (begun_.capacity() + ended_.capacity() + sort_buffer_.capacity()) * sizeof(Pair) +
+               (begun_.capacity() + ended_.capacity()) * sizeof(Pair) + sort_scratch_.bytes_held() +
                calls_.capacity() * sizeof(BodyCall) +
                own_.bytes_held([](const DiffScratch& scratch) { return scratch.bytes_held(); });
     }
@@ -149,7 +149,7 @@ private:
     /// listed twice: the two copies end up side by side.
     void settle_candidates() {
         auto& candidates = scratch_.candidates;
-        sort_pairs_fast(candidates, sort_buffer_);
+        sort_pairs_fast(candidates, sort_scratch_);
         const auto repeat = std::adjacent_find(candidates.begin(), candidates.end());
         if (repeat != candidates.end()) throw_repeated_pair(*repeat);
         auto& renamed = scratch_.renamed;
@@ -178,7 +178,7 @@ private:
     std::vector<Pair> begun_;
     std::vector<Pair> ended_;
     std::vector<BodyCall> calls_;
-    std::vector<Pair> sort_buffer_;
+    PairSortScratch sort_scratch_;
     bool everything_replaced_ = false;
 };
 

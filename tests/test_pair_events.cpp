@@ -137,6 +137,23 @@ TEST(PairEvents, NamesBeyond32BitsAndBack) {
     }
 }
 
+TEST(PairEvents, EventsSortedWhenNamesFillAll32Bits) {
+    // More events than the comparison sort takes, with names as wide as a packed pair allows:
+    // the radix sort's key is then 64 bits of names, nothing to spare.
+    std::mt19937_64 random(47);
+    const BoxId top = BoxId{1} << 32;
+    PairEvents events;
+    std::vector<Pair> previous;
+    for (int round = 0; round < 3; ++round) {
+        std::vector<Pair> next = random_pairs(random, 9000, 4000);
+        for (Pair& pair : next) pair = {top - 1 - pair.b, top - 1 - pair.a};
+        events.update(next);
+        EXPECT_EQ(as_vector(events.begun()), difference(next, previous)) << round;
+        EXPECT_EQ(as_vector(events.ended()), difference(previous, next)) << round;
+        previous = next;
+    }
+}
+
 TEST(PairEvents, ReplacedNameEndsAndBeginsItsPairs) {
     PairEvents events;
     events.update(std::vector<Pair>{{1, 2}, {2, 3}, {4, 5}});
