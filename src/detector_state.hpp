@@ -15,6 +15,7 @@
 #include "core/settings_check.hpp"
 #include "core/stopwatch.hpp"
 #include "cuts/held_cut_pipeline.hpp"
+#include "filters/detector_classes.hpp"
 #include "periodic/periodic_path.hpp"
 #include "skin/skin_list.hpp"
 #include "smb/candidate_pairs.hpp"
@@ -34,8 +35,10 @@ public:
 
     const DetectorSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
-    HeldPrecision last_precision() const noexcept { return pipeline_.precision(); }
-    std::size_t last_retested_pairs() const noexcept { return retested_; }
+    HeldPrecision last_precision() const noexcept {
+        return classes_.split() ? classes_.precision() : pipeline_.precision();
+    }
+    std::size_t last_retested_pairs() const noexcept { return classes_.split() ? classes_.retested() : retested_; }
     /// A filtered detection reported fewer pairs than it found, maybe over fewer boxes than the
     /// caller's (filters/filtered_sink.hpp).
     void set_reported(std::size_t boxes, std::size_t pairs) noexcept {
@@ -45,6 +48,14 @@ public:
     /// Where a filtered detection gathers the boxes that can pair, and their indices.
     std::vector<Box<Real, Dim>>& gathered() noexcept { return gathered_; }
     std::vector<std::uint32_t>& gathered_origin() noexcept { return gathered_origin_; }
+    /// A filtered detection split by interaction classes (filters/detector_classes.hpp).
+    DetectorClasses<Real, Dim>& classes() noexcept { return classes_; }
+    /// The detection was split: the pipeline over the whole array gives its memory back.
+    void release_whole_pipeline() {
+        pipeline_.clear();
+        skin_.clear();
+        retested_ = 0;
+    }
     /// The periodic detection (periodic/periodic_path.hpp), made on the first periodic call so
     /// that a detector that never uses one stays small.
     PeriodicPath<Real, Dim>& periodic() {
@@ -78,12 +89,14 @@ public:
         retested_ = 0;
         std::vector<Box<Real, Dim>>().swap(gathered_);
         std::vector<std::uint32_t>().swap(gathered_origin_);
+        classes_.clear();
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
     }
 
     DetectStats detect(std::span<const Box<Real, Dim>> boxes, const PairSink& sink) {
         const Stopwatch whole;
+        classes_.clear();
         forget_candidates();
         candidates_ready_ = false;
         DetectStats stats;
@@ -118,7 +131,7 @@ public:
         return sizeof(*this) + pipeline_.bytes_held() + skin_.bytes_held() +
                (chunk_.capacity() + candidate_pairs_.capacity()) * sizeof(Pair) +
                gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t) +
-               (periodic_ ? sizeof(PeriodicPath<Real, Dim>) + periodic_->bytes_held() : 0);
+               classes_.bytes_held() + (periodic_ ? sizeof(PeriodicPath<Real, Dim>) + periodic_->bytes_held() : 0);
     }
 
 private:
@@ -156,6 +169,7 @@ private:
     std::vector<Pair> chunk_;
     std::vector<Box<Real, Dim>> gathered_;
     std::vector<std::uint32_t> gathered_origin_;
+    DetectorClasses<Real, Dim> classes_;
     bool skin_detected_ = false;     // the last detection ran on the skin list, and returned
     bool candidates_ready_ = false;  // candidate_pairs_ and candidate_margin_ are its own
     std::vector<Pair> candidate_pairs_;

@@ -11,6 +11,7 @@
 
 #include "core/collected_pairs.hpp"
 #include "core/scene_bounds.hpp"
+#include "core/stopwatch.hpp"
 #include "detector_state.hpp"
 #include "filters/filtered_sink.hpp"
 #include "smb/detector.hpp"
@@ -87,7 +88,18 @@ DetectStats Detector<Real, Dim>::detect(std::span<const Box<Real, Dim>> boxes, c
     // that an invalid one is named by its index in the caller's array.
     bool gathered = false;
     if (!filters.filters.empty()) {
+        const detail::Stopwatch whole;
         (void)detail::checked_bounds(boxes);
+        DetectStats split;
+        if (state.classes().detect(boxes, filters, sink, state.settings(), split)) {
+            state.release_whole_pipeline();
+            state.forget_candidates();
+            split.boxes = boxes.size();
+            split.bytes_held = state.bytes_held();
+            split.total_seconds = whole.seconds();
+            state.set_last_stats(split);
+            return split;
+        }
         gathered = detail::gather_interacting(boxes, filters.filters, state.gathered(), state.gathered_origin());
     }
     detail::FilteredSink filtered(

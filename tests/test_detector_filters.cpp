@@ -69,6 +69,61 @@ TYPED_TEST(DetectorFiltersTest, RandomFiltersStaticsAndPredicateMatchBruteForce)
     }
 }
 
+TYPED_TEST(DetectorFiltersTest, LayersThatIgnoreEachOtherMatchBruteForce) {
+    // Layers whose masks meet only their own category (interaction classes detected apart), a
+    // debris set linked to layer 1, boxes that pair with nothing; some calls link every layer
+    // through a box that meets them all (one class again), then it leaves. Boxes move, teleport,
+    // change layer, and the array grows and shrinks.
+    using Real = typename TypeParam::real_type;
+    constexpr int Dim = TypeParam::dimension;
+    Random random(11);
+    const double space = std::pow(500 * std::pow(1.5, Dim) / 0.5, 1.0 / Dim);
+    const std::vector<Filter> layers{{1, 1}, {2, 2}, {4, 4}, {8, 8}, {16, 1}, {32, 0}, {0, 255}};
+    const auto random_layer = [&] { return layers[uniform_index(random, layers.size())]; };
+    std::vector<Box<Real, Dim>> boxes;
+    std::vector<Filter> filters;
+    std::vector<std::uint8_t> statics;
+    TypeParam detector;
+    for (int call = 0; call < 24; ++call) {
+        SCOPED_TRACE(::testing::Message() << "call " << call);
+        const std::size_t n = 400 + uniform_index(random, 150);
+        const std::size_t held = boxes.size();
+        boxes.resize(n, Box<Real, Dim>{});
+        filters.resize(n);
+        statics.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const bool fresh = i >= held;
+            boxes[i] = fresh || chance(random, 0.02) ? random_box<Real, Dim>(random, 0, space, 1.0, 2.5)
+                                                     : perturbed(random, boxes[i], 1e-3 * space, 1e-2);
+            if (fresh || chance(random, 0.03)) filters[i] = random_layer();
+            statics[i] = chance(random, 0.1) ? 1 : 0;
+        }
+        const bool linked = call % 6 == 3;
+        if (linked) filters[n / 2] = Filter{255, 255};
+        DetectFilters f;
+        f.filters = filters;
+        if (call % 4 == 1) f.statics = statics;
+        if (call % 5 == 2) f.predicate = [](BoxId a, BoxId b) { return (a + 3 * b) % 7 != 0; };
+        std::vector<Pair> expected;
+        for (const Pair& p : brute_force_pairs<Real, Dim>(boxes)) {
+            if (!f.statics.empty() && statics[p.a] != 0 && statics[p.b] != 0) continue;
+            if (!filters_pass(filters[p.a], filters[p.b])) continue;
+            if (f.predicate && !f.predicate(p.a, p.b)) continue;
+            expected.push_back(p);
+        }
+        std::vector<Pair> pairs;
+        const DetectStats stats = detector.detect(boxes, f, pairs);
+        EXPECT_EQ(stats.pairs, pairs.size());
+        EXPECT_EQ(stats.boxes, n);
+        EXPECT_EQ(detector.last_stats().pairs, pairs.size());
+        EXPECT_NE(detector.last_precision(), HeldPrecision::none);
+        ASSERT_TRUE(same_pairs(pairs, expected));
+        if (linked) filters[n / 2] = random_layer();
+    }
+    detector.clear();
+    EXPECT_EQ(detector.last_precision(), HeldPrecision::none);
+}
+
 TEST(DetectorFilters, AnInvalidBoxIsNamedByItsIndexWhenBoxesAreLeftOut) {
     Detector3f detector;
     std::vector<Box3f> boxes(3, Box3f{{0, 0, 0}, {1, 1, 1}});

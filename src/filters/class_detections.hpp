@@ -17,6 +17,7 @@
 #include "core/box_store.hpp"
 #include "core/scene_bounds.hpp"
 #include "cuts/held_cut_pipeline.hpp"
+#include "filters/class_stats.hpp"
 #include "filters/filtered_report.hpp"
 #include "filters/interaction_classes.hpp"
 #include "smb/filter.hpp"
@@ -120,7 +121,7 @@ public:
                 FilteredReport<Output> report(output, c.info, predicate);
                 c.pipeline.detect(boxes, {}, bounds, settings, report, part);
             }
-            add(stats, part);
+            add_class_stats(stats, part);
         }
     }
 
@@ -158,19 +159,6 @@ private:
         std::vector<BoxId> keys;     // index i's key for the pipeline, when packed
         bool packed = true;
     };
-
-    static void add(DetectStats& total, const DetectStats& part) {
-        total.cells += part.cells;
-        total.oversized_boxes += part.oversized_boxes;
-        total.sort_moves += part.sort_moves;
-        total.containment_seconds += part.containment_seconds;
-        total.quantile_seconds += part.quantile_seconds;
-        total.list_sort_seconds += part.list_sort_seconds;
-        total.cut_regroup_seconds += part.cut_regroup_seconds;
-        total.check_seconds += part.check_seconds;
-        total.copy_seconds += part.copy_seconds;
-        for (std::size_t l = 0; l < part.level_seconds.size(); ++l) total.level_seconds[l] += part.level_seconds[l];
-    }
 
     /// Position p of the list of moving boxes leaves its class (swap-removed there).
     void leave(Slot p) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pair_output.hpp"
 #include "smb/errors.hpp"
 #include "smb/filter.hpp"
 #include "smb/pair.hpp"
@@ -55,16 +56,22 @@ bool gather_interacting(std::span<const Box> boxes, std::span<const Filter> filt
 class FilteredSink {
 public:
     /// `origin` empty: the detection ran over the caller's array; otherwise over the boxes
-    /// gathered from it, index i being the caller's origin[i].
+    /// gathered from it, index i being the caller's origin[i] (in any order).
+    /// `test_bits` false: every pair handed over passes the filter bits (an interaction class whose
+    /// values all pass each other), and only the static flags and the predicate are tested.
     FilteredSink(const DetectFilters& filters, const PairSink& sink, std::size_t chunk_size,
-                 std::span<const std::uint32_t> origin = {})
-        : filters_(filters), sink_(sink), chunk_size_(chunk_size), origin_(origin) {
+                 std::span<const std::uint32_t> origin = {}, bool test_bits = true)
+        : filters_(filters),
+          sink_(sink),
+          chunk_size_(chunk_size),
+          origin_(origin),
+          test_bits_(test_bits && !filters.filters.empty()) {
         kept_.reserve(chunk_size_);
     }
 
     void operator()(std::span<const Pair> pairs) {
         for (Pair p : pairs) {
-            if (!origin_.empty()) p = Pair{origin_[p.a], origin_[p.b]};  // origin is increasing
+            if (!origin_.empty()) p = ordered_pair(origin_[p.a], origin_[p.b]);
             if (!passes(p)) continue;
             kept_.push_back(p);
             if (kept_.size() == chunk_size_) send();
@@ -80,7 +87,7 @@ public:
 private:
     [[nodiscard]] bool passes(const Pair& p) const {
         if (!filters_.statics.empty() && filters_.statics[p.a] != 0 && filters_.statics[p.b] != 0) return false;
-        if (!filters_.filters.empty() && !filters_pass(filters_.filters[p.a], filters_.filters[p.b])) return false;
+        if (test_bits_ && !filters_pass(filters_.filters[p.a], filters_.filters[p.b])) return false;
         return !filters_.predicate || filters_.predicate(p.a, p.b);
     }
 
@@ -94,6 +101,7 @@ private:
     const PairSink& sink_;
     std::size_t chunk_size_;
     std::span<const std::uint32_t> origin_;
+    bool test_bits_;
     std::vector<Pair> kept_;
     std::size_t passed_ = 0;
 };

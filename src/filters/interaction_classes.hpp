@@ -29,15 +29,15 @@ class InteractionClasses {
 public:
     static constexpr std::size_t kMaxValues = 64;
 
-    /// Classes of the filter values of the boxes: filter_of(i) for i in [0, n), each value with
-    /// category and mask not 0.
+    /// Classes of the filter values of the boxes: filter_of(i) for i in [0, n). A value whose
+    /// category or mask is 0 pairs with nothing and belongs to no class.
     template <class FilterOf>
     void build(std::size_t n, FilterOf&& filter_of) {
         clear();
         slots_.assign(kSlots, Slot{});
         for (std::size_t i = 0; i < n && !overflowed_; ++i) {
             const Filter f = filter_of(i);
-            if (find(f) != kMissing) continue;
+            if (!filter_interacts(f) || find(f) != kMissing) continue;
             if (values_.size() == kMaxValues) {
                 overflowed_ = true;
                 break;
@@ -50,6 +50,7 @@ public:
             overflowed_ = true;
             count_ = n == 0 ? 0 : 1;
             pairs_within_.assign(count_, true);
+            all_pass_within_.assign(count_, false);
             return;
         }
         // Union-find over the values, then classes numbered in the order of their first value.
@@ -74,9 +75,15 @@ public:
             }
             value_class_[v] = c;
         }
+        all_pass_within_.assign(count_, true);
         for (std::size_t i = 0; i < values_.size(); ++i) {
             for (std::size_t j = i; j < values_.size(); ++j) {
-                if (filters_pass(values_[i], values_[j])) pairs_within_[value_class_[i]] = true;
+                if (value_class_[i] != value_class_[j]) continue;
+                if (filters_pass(values_[i], values_[j])) {
+                    pairs_within_[value_class_[i]] = true;
+                } else {
+                    all_pass_within_[value_class_[i]] = false;
+                }
             }
         }
     }
@@ -87,13 +94,14 @@ public:
         values_.clear();
         value_class_.clear();
         pairs_within_.clear();
+        all_pass_within_.clear();
         count_ = 0;
         overflowed_ = false;
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return slots_.capacity() * sizeof(Slot) + values_.capacity() * sizeof(Filter) + value_class_.capacity() +
-               pairs_within_.capacity() / 8;
+               (pairs_within_.capacity() + all_pass_within_.capacity()) / 8;
     }
 
     /// Classes (0 with no values; 1 after an overflow).
@@ -109,6 +117,9 @@ public:
     /// Whether two boxes of class c may pair (some two of its values pass, one with itself
     /// included).
     [[nodiscard]] bool pairs_within(std::size_t c) const noexcept { return pairs_within_[c]; }
+    /// Whether every two boxes of class c pass the bits (each value with every value of c, itself
+    /// included): the pairs of such a class need no test of the bits.
+    [[nodiscard]] bool all_pass_within(std::size_t c) const noexcept { return all_pass_within_[c]; }
 
 private:
     static constexpr std::uint8_t kMissing = 0xFF;
@@ -145,6 +156,7 @@ private:
     std::vector<Filter> values_;
     std::vector<std::uint8_t> value_class_;
     std::vector<bool> pairs_within_;
+    std::vector<bool> all_pass_within_;
     std::size_t count_ = 0;
     bool overflowed_ = false;
 };

@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// A Detector's filtered detection split by interaction classes (interaction_classes.hpp). Where
+// the filters make two classes or more, each class whose boxes can pair within is gathered into
+// an array of its own and detected by a detector state of its own, whose persistent cuts then
+// follow that class from call to call. Two layers that ignore each other cost their two
+// detections, not one detection of all their boxes in which the pairs across the layers are
+// found and dropped. The pairs still pass through the filtered sink (the bits, the static flags,
+// the predicate), which maps them back to the caller's indices.
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "filters/class_stats.hpp"
+#include "filters/filtered_sink.hpp"
+#include "filters/interaction_classes.hpp"
+#include "smb/box.hpp"
+#include "smb/detector.hpp"
+#include "smb/filter.hpp"
+#include "smb/held_precision.hpp"
+#include "smb/stats.hpp"
+
+namespace smb::detail {
+
+template <std::floating_point Real, int Dim>
+class DetectorState;
+
+template <std::floating_point Real, int Dim>
+class DetectorClasses {
+public:
+    /// Detects `boxes` (already checked) class by class, handing the pairs that pass `filters`
+    /// to `sink`, and adds the classes' work to `stats`; returns false, having detected nothing
+    /// and released the classes' detectors, where the filters make fewer than two classes.
+    bool detect(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters, const PairSink& sink,
+                const DetectorSettings& settings, DetectStats& stats) {
+        split_ = false;
+        if (filters.filters.empty() || !follow(filters.filters)) {
+            clear();
+            return false;
+        }
+        split_ = true;
+        std::size_t reported = 0;
+        for (std::size_t c = 0; c < parts_.size(); ++c) {
+            Part& part = parts_[c];
+            if (part.members.empty()) {
+                part.state.reset();
+                std::vector<Box<Real, Dim>>().swap(part.boxes);
+                continue;
+            }
+            part.boxes.resize(part.members.size());
+            for (std::size_t k = 0; k < part.members.size(); ++k) part.boxes[k] = boxes[part.members[k]];
+            if (!part.state) part.state = std::make_unique<DetectorState<Real, Dim>>(settings);
+            FilteredSink filtered(filters, sink, settings.pair_chunk_size, part.members,
+                                  !classes_.all_pass_within(c));
+            const DetectStats own = part.state->detect(part.boxes, PairSink(std::ref(filtered)));
+            reported += filtered.finish();
+            add_class_stats(stats, own);
+        }
+        stats.pairs = reported;
+        return true;
+    }
+
+    /// Whether the last detection was split.
+    [[nodiscard]] bool split() const noexcept { return split_; }
+    /// Doubles where any class held doubles; none where no class was detected.
+    [[nodiscard]] HeldPrecision precision() const noexcept {
+        HeldPrecision held = HeldPrecision::none;
+        for (const Part& part : parts_) {
+            if (!part.state) continue;
+            const HeldPrecision own = part.state->last_precision();
+            if (own == HeldPrecision::doubles) return own;
+            if (own != HeldPrecision::none) held = own;
+        }
+        return held;
+    }
+    [[nodiscard]] std::size_t retested() const noexcept {
+        std::size_t n = 0;
+        for (const Part& part : parts_) n += part.state ? part.state->last_retested_pairs() : 0;
+        return n;
+    }
+
+    void clear() {
+        classes_.clear();
+        std::vector<Part>().swap(parts_);
+        std::vector<std::uint8_t>().swap(class_of_index_);
+        std::vector<std::uint32_t>().swap(position_of_index_);
+        split_ = false;
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        std::size_t bytes = classes_.bytes_held() + parts_.capacity() * sizeof(Part) + class_of_index_.capacity() +
+                            position_of_index_.capacity() * sizeof(std::uint32_t);
+        for (const Part& part : parts_) {
+            bytes += part.boxes.capacity() * sizeof(Box<Real, Dim>) + part.members.capacity() * sizeof(std::uint32_t);
+            if (part.state) bytes += part.state->bytes_held();
+        }
+        return bytes;
+    }
+
+private:
+    static constexpr std::uint8_t kNoClass = 0xFF;
+
+    /// One class: the caller's indices of its boxes, each kept at its position from call to call
+    /// (an index that leaves is swap-removed, one that joins is appended), so that the class's
+    /// detector finds the same box at the same index; a list in index order would shift every
+    /// member past one that left, and the persistent cuts would find no box where they left it.
+    struct Part {
+        std::unique_ptr<DetectorState<Real, Dim>> state;
+        std::vector<std::uint32_t> members;
+        std::vector<Box<Real, Dim>> boxes;  // box of members[k] at k
+    };
+
+    /// Brings the classes and their members to `filters`, the caller's index i being the box
+    /// it was at the last call (the Detector's rule for its persistent cuts). Returns false where
+    /// the filters make fewer than two classes.
+    bool follow(std::span<const Filter> filters) {
+        for (const Filter& f : filters) {
+            if (filter_interacts(f) && !classes_.knows(f)) {
+                rebuild(filters);
+                break;
+            }
+        }
+        if (classes_.count() < 2) return false;
+        // Indices past the array's end have left it.
+        for (std::size_t i = filters.size(); i < class_of_index_.size(); ++i) leave(i);
+        class_of_index_.resize(filters.size(), kNoClass);
+        position_of_index_.resize(filters.size(), 0);
+        for (std::size_t i = 0; i < filters.size(); ++i) {
+            const Filter& f = filters[i];
+            std::uint8_t now = kNoClass;
+            if (filter_interacts(f)) {
+                const std::size_t c = classes_.class_of(f);
+                if (classes_.pairs_within(c)) now = static_cast<std::uint8_t>(c);
+            }
+            if (now == class_of_index_[i]) continue;
+            leave(i);
+            if (now != kNoClass) join(i, now);
+        }
+        return true;
+    }
+
+    /// New classes from the filters' values, every member gone from them.
+    void rebuild(std::span<const Filter> filters) {
+        classes_.build(filters.size(), [&](std::size_t i) { return filters[i]; });
+        parts_.clear();
+        parts_.resize(classes_.count());
+        class_of_index_.assign(class_of_index_.size(), kNoClass);
+    }
+
+    void leave(std::size_t i) {
+        const std::uint8_t c = class_of_index_[i];
+        if (c == kNoClass) return;
+        std::vector<std::uint32_t>& members = parts_[c].members;
+        const std::uint32_t at = position_of_index_[i];
+        const std::uint32_t moved = members.back();
+        members[at] = moved;
+        position_of_index_[moved] = at;
+        members.pop_back();
+        class_of_index_[i] = kNoClass;
+    }
+
+    void join(std::size_t i, std::uint8_t c) {
+        std::vector<std::uint32_t>& members = parts_[c].members;
+        class_of_index_[i] = c;
+        position_of_index_[i] = static_cast<std::uint32_t>(members.size());
+        members.push_back(static_cast<std::uint32_t>(i));
+    }
+
+    InteractionClasses classes_;
+    std::vector<Part> parts_;
+    std::vector<std::uint8_t> class_of_index_;       // per caller index, kNoClass when in none
+    std::vector<std::uint32_t> position_of_index_;  // its position among its class's members
+    bool split_ = false;
+};
+
+}  // namespace smb::detail
