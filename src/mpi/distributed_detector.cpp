@@ -5,6 +5,7 @@
 #include <chrono>
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include "axial_regions.hpp"
 #include "collective_checks.hpp"
@@ -89,6 +90,12 @@ private:
     std::vector<std::size_t> order_;  // this step's boxes in id order
     std::vector<BoxId> sorted_ids_;
     SentBoxes<box_type> sent_;
+    SentBoxes<box_type> next_sent_;                            // this step's, swapped into sent_
+    std::vector<std::pair<int, std::size_t>> upsert_targets_;  // (region, box in id order)
+    std::vector<std::pair<int, BoxId>> removal_targets_;       // (region, id)
+    std::vector<BoxRecord<Real, Dim>> upsert_send_;
+    std::vector<BoxId> removal_send_;
+    std::vector<int> here_;
     RegionStore<box_type> store_;  // the region's boxes, with the rank that passed in each
 };
 
@@ -141,19 +148,18 @@ void DistributedState<Real, Dim>::send_box_changes(std::span<const box_type> box
         sent_.clear();
         store_.clear();
     }
-    const auto regions = static_cast<std::size_t>(ranks_);
-    std::vector<std::vector<BoxId>> removals(regions);
-    std::vector<std::vector<Record>> upserts(regions);
     const auto contains = [](std::span<const int> list, int region) {
         return std::find(list.begin(), list.end(), region) != list.end();
     };
+    // First the destinations (region, box), then a counting sort into the send buffers; the
+    // buffers are members, so that a step reuses the last one's memory.
+    upsert_targets_.clear();
+    removal_targets_.clear();
     const auto remove_everywhere = [&](std::size_t last) {
-        for (int region : sent_.regions_of(last)) removals[static_cast<std::size_t>(region)].push_back(sent_.ids[last]);
+        for (int region : sent_.regions_of(last)) removal_targets_.push_back({region, sent_.ids[last]});
     };
-    SentBoxes<box_type> now;
-    now.ids.reserve(order_.size());
-    now.boxes.reserve(order_.size());
-    std::vector<int> here;
+    next_sent_.clear();
+    std::vector<int>& here = here_;
     std::size_t last = 0;  // both in id order: a merge
     for (std::size_t k = 0; k < order_.size(); ++k) {
         const BoxId id = sorted_ids_[k];
@@ -165,31 +171,33 @@ void DistributedState<Real, Dim>::send_box_changes(std::span<const box_type> box
         const std::span<const int> before = known ? sent_.regions_of(last) : std::span<const int>();
         const bool moved = !known || !(sent_.boxes[last] == box);
         for (int region : here) {
-            if (moved || !contains(before, region)) upserts[static_cast<std::size_t>(region)].push_back({id, box});
+            if (moved || !contains(before, region)) upsert_targets_.push_back({region, k});
         }
         for (int region : before) {
-            if (!contains(here, region)) removals[static_cast<std::size_t>(region)].push_back(id);
+            if (!contains(here, region)) removal_targets_.push_back({region, id});
         }
         if (known) ++last;
-        now.add(id, box, here);
+        next_sent_.add(id, box, here);
     }
     while (last < sent_.size()) remove_everywhere(last++);
-    sent_ = std::move(now);
+    std::swap(sent_, next_sent_);
 
-    const auto flatten = [regions](auto& per_region, auto& flat, std::vector<int>& counts) {
-        counts.assign(regions, 0);
-        for (std::size_t r = 0; r < regions; ++r) {
-            counts[r] = static_cast<int>(per_region[r].size());
-            flat.insert(flat.end(), per_region[r].begin(), per_region[r].end());
-        }
-    };
-    std::vector<BoxId> removal_send;
-    std::vector<Record> upsert_send;
     std::vector<int> removal_counts, upsert_counts, removals_received, upserts_received;
-    flatten(removals, removal_send, removal_counts);
-    flatten(upserts, upsert_send, upsert_counts);
-    const std::vector<BoxId> removed = all_to_all(comm_, removal_send, removal_counts, removals_received);
-    const std::vector<Record> upserted = all_to_all(comm_, upsert_send, upsert_counts, upserts_received);
+    const auto fill_by_region = [this](const auto& targets, auto& send, std::vector<int>& counts, auto record_of) {
+        counts.assign(static_cast<std::size_t>(ranks_), 0);
+        for (const auto& target : targets) ++counts[static_cast<std::size_t>(target.first)];
+        std::vector<int> fill(counts.size(), 0);
+        std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
+        send.resize(targets.size());
+        for (const auto& target : targets)
+            send[static_cast<std::size_t>(fill[static_cast<std::size_t>(target.first)]++)] = record_of(target.second);
+    };
+    fill_by_region(removal_targets_, removal_send_, removal_counts, [](BoxId id) { return id; });
+    fill_by_region(upsert_targets_, upsert_send_, upsert_counts, [&](std::size_t k) {
+        return Record{sorted_ids_[k], boxes[order_[k]]};
+    });
+    const std::vector<BoxId> removed = all_to_all(comm_, removal_send_, removal_counts, removals_received);
+    const std::vector<Record> upserted = all_to_all(comm_, upsert_send_, upsert_counts, upserts_received);
     stats_.box_bytes_sent =
         bytes_to_others<BoxId>(removal_counts, rank_) + bytes_to_others<Record>(upsert_counts, rank_);
     receive_box_changes(removed, upserted, upserts_received);
@@ -200,6 +208,7 @@ void DistributedState<Real, Dim>::receive_box_changes(const std::vector<BoxId>& 
                                                       const std::vector<BoxRecord<Real, Dim>>& upserts,
                                                       const std::vector<int>& upsert_counts) {
     for (BoxId id : removals) store_.remove(id);
+    store_.reserve(store_.size() + upserts.size());
     std::size_t at = 0;
     for (int source = 0; source < ranks_; ++source) {
         for (int r = 0; r < upsert_counts[static_cast<std::size_t>(source)]; ++r, ++at) {

@@ -29,6 +29,9 @@ public:
         slots_.clear();
     }
 
+    /// Room for `count` boxes without rehashing the ids' slots.
+    void reserve(std::size_t count) { slots_.reserve(count); }
+
     /// Forgets box `id`; a box not here is ignored.
     void remove(BoxId id) {
         const auto found = slots_.find(id);
