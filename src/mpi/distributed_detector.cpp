@@ -70,8 +70,9 @@ private:
     /// one, inserted by another) ends held by the second.
     void receive_box_changes(const std::vector<BoxId>& removals, const std::vector<BoxRecord<Real, Dim>>& upserts,
                              const std::vector<int>& upsert_counts);
-    /// Runs the Detector over the region and sends each pair kept here to its holder(s).
-    std::vector<Pair> detect_in_region_and_hand_off();
+    /// Runs the Detector over the region and sends each pair kept here to its holder(s); what
+    /// arrives here goes to pairs_received_.
+    void detect_in_region_and_hand_off();
 
     [[nodiscard]] bool lower_corner_is_here(const box_type& a, const box_type& b) const noexcept {
         for (int k = 0; k < Dim; ++k) {
@@ -96,7 +97,17 @@ private:
     std::vector<BoxRecord<Real, Dim>> upsert_send_;
     std::vector<BoxId> removal_send_;
     std::vector<int> here_;
-    RegionStore<box_type> store_;  // the region's boxes, with the rank that passed in each
+    std::vector<BoxId> removals_received_;
+    std::vector<BoxRecord<Real, Dim>> upserts_received_;
+    /// A pair kept by this region, on its way to a holder.
+    struct AddressedPair {
+        int destination;
+        Pair pair;
+    };
+    std::vector<AddressedPair> kept_pairs_;
+    std::vector<Pair> pair_send_;
+    std::vector<Pair> pairs_received_;  // swapped with the caller's vector
+    RegionStore<box_type> store_;       // the region's boxes, with the rank that passed in each
 };
 
 template <std::floating_point Real, int Dim>
@@ -196,11 +207,11 @@ void DistributedState<Real, Dim>::send_box_changes(std::span<const box_type> box
     fill_by_region(upsert_targets_, upsert_send_, upsert_counts, [&](std::size_t k) {
         return Record{sorted_ids_[k], boxes[order_[k]]};
     });
-    const std::vector<BoxId> removed = all_to_all(comm_, removal_send_, removal_counts, removals_received);
-    const std::vector<Record> upserted = all_to_all(comm_, upsert_send_, upsert_counts, upserts_received);
+    all_to_all(comm_, removal_send_, removal_counts, removals_received, removals_received_);
+    all_to_all(comm_, upsert_send_, upsert_counts, upserts_received, upserts_received_);
     stats_.box_bytes_sent =
         bytes_to_others<BoxId>(removal_counts, rank_) + bytes_to_others<Record>(upsert_counts, rank_);
-    receive_box_changes(removed, upserted, upserts_received);
+    receive_box_changes(removals_received_, upserts_received_, upserts_received);
 }
 
 template <std::floating_point Real, int Dim>
@@ -223,12 +234,9 @@ void DistributedState<Real, Dim>::receive_box_changes(const std::vector<BoxId>& 
 }
 
 template <std::floating_point Real, int Dim>
-std::vector<Pair> DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
-    struct Addressed {
-        int destination;
-        Pair pair;
-    };
-    std::vector<Addressed> kept;
+void DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
+    std::vector<AddressedPair>& kept = kept_pairs_;
+    kept.clear();
     const bool both = settings_.hand_off == PairHandOff::both_holders;
     const auto start = std::chrono::steady_clock::now();
     // The sink streams the pairs, so no pair limit applies here: a limit reached on one rank
@@ -249,11 +257,12 @@ std::vector<Pair> DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
     stats_.local_detect_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats_.pairs_found = 0;
     std::vector<int> counts(static_cast<std::size_t>(ranks_), 0);
-    for (const Addressed& item : kept) ++counts[static_cast<std::size_t>(item.destination)];
+    for (const AddressedPair& item : kept) ++counts[static_cast<std::size_t>(item.destination)];
     std::vector<int> fill(counts.size(), 0);
     std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
-    std::vector<Pair> send(kept.size());
-    for (const Addressed& item : kept)
+    std::vector<Pair>& send = pair_send_;
+    send.resize(kept.size());
+    for (const AddressedPair& item : kept)
         send[static_cast<std::size_t>(fill[static_cast<std::size_t>(item.destination)]++)] = item.pair;
     stats_.pairs_found = both ? 0 : kept.size();
     if (both) {
@@ -264,9 +273,8 @@ std::vector<Pair> DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
         }
     }
     std::vector<int> receive_counts;
-    std::vector<Pair> received = all_to_all(comm_, send, counts, receive_counts);
+    all_to_all(comm_, send, counts, receive_counts, pairs_received_);
     stats_.pair_bytes_sent = bytes_to_others<Pair>(counts, rank_);
-    return received;
 }
 
 template <std::floating_point Real, int Dim>
@@ -277,9 +285,10 @@ void DistributedState<Real, Dim>::detect(std::span<const BoxId> ids, std::span<c
     agree_and_balance(ids, boxes);
     stats_.boxes_passed = boxes.size();
     send_box_changes(boxes);
-    std::vector<Pair> received = detect_in_region_and_hand_off();
-    stats_.pairs_received = received.size();
-    pairs.swap(received);
+    detect_in_region_and_hand_off();
+    stats_.pairs_received = pairs_received_.size();
+    // The caller's vector takes the pairs; its memory serves the next step's exchange.
+    pairs.swap(pairs_received_);
     stats_.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
