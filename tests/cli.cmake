@@ -5,6 +5,9 @@
 smb_add_gtest(NAME test_dynamic_environment
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_dynamic_environment.cpp
   LIBS smb_workload)
+smb_add_gtest(NAME test_environment_share
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_environment_share.cpp
+  LIBS smb_workload)
 smb_add_gtest(NAME test_reference_grid
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_reference_grid.cpp
   LIBS smb_workload)

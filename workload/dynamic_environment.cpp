@@ -7,44 +7,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "environment_draws.hpp"
+#include "environment_shape.hpp"
+
 namespace smb::workload {
 
+using draws::reflect_into;
+using draws::symmetric_unit;
+using draws::uniform_between;
+using draws::uniform_index;
+
 namespace {
-
-// The draws below use only the raw 64-bit output of the engine, never the standard
-// distributions: those are implementation-defined, and a scene must be the same everywhere.
-
-constexpr double two_pow_minus_52 = 0x1.0p-52;
-constexpr double two_pow_minus_53 = 0x1.0p-53;
-
-/// Uniform in [0, 1).
-double unit_interval(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * two_pow_minus_53; }
-
-/// Uniform in the open interval (-1, 1), symmetric about 0: the odd multiples of 2^-52 in
-/// (-1, 1) are all exactly representable, so no rounding can reach either bound.
-double symmetric_unit(std::mt19937_64& rng) {
-    const auto k = static_cast<std::int64_t>(rng() >> 12);  // [0, 2^52)
-    const std::int64_t odd = 2 * k + 1 - (std::int64_t{1} << 52);
-    return static_cast<double>(odd) * two_pow_minus_52;
-}
-
-/// Uniform index in [0, count), by the multiply-high reduction (bias below 2^-40 here).
-std::size_t uniform_index(std::mt19937_64& rng, std::size_t count) {
-    __extension__ using wide = unsigned __int128;
-    return static_cast<std::size_t>((static_cast<wide>(rng()) * count) >> 64);
-}
-
-double uniform_between(std::mt19937_64& rng, double low, double high) {
-    return std::min(high, low + (high - low) * unit_interval(rng));
-}
-
-/// Mirrors `value` back into [low, high] at the bound it crossed; the clamp only acts when the
-/// overshoot is larger than the interval itself.
-double reflect_into(double value, double low, double high) {
-    if (value < low) value = low + (low - value);
-    if (value > high) value = high - (value - high);
-    return std::clamp(value, low, high);
-}
 
 /// The shortest text that reads back to `value` (0.5, not 0.500000).
 std::string shortest_number(double value) {
@@ -68,26 +41,37 @@ double density_for_cube_side(std::size_t box_count, double cube_side, double min
     return static_cast<double>(box_count) * std::pow(mean_side / cube_side, dim);
 }
 
-template <int Dim>
-DynamicEnvironment<Dim>::DynamicEnvironment(const EnvironmentParams& params) : params_(params), rng_(params.seed) {
+EnvironmentShape environment_shape(const EnvironmentParams& params, int dim) {
     require(std::isfinite(params.size_ratio) && params.size_ratio >= 1, "the size ratio H must be at least 1");
     require(std::isfinite(params.update_factor) && params.update_factor >= 0 && params.update_factor < 1,
             "the update factor must lie in [0, 1)");
-    max_side_ = 1;
-    min_side_ = max_side_ / params.size_ratio;
+    EnvironmentShape shape;
+    shape.max_side = 1;
+    shape.min_side = shape.max_side / params.size_ratio;
     if (params.cube_side) {
-        cube_side_ = *params.cube_side;
-        require(std::isfinite(cube_side_), "the cube side must be finite");
-        packing_density_ = density_for_cube_side(params.box_count, cube_side_, min_side_, max_side_, Dim);
+        shape.cube_side = *params.cube_side;
+        require(std::isfinite(shape.cube_side), "the cube side must be finite");
+        shape.packing_density =
+            density_for_cube_side(params.box_count, shape.cube_side, shape.min_side, shape.max_side, dim);
     } else {
         require(std::isfinite(params.packing_density) && params.packing_density > 0,
                 "the packing density E must be positive");
-        packing_density_ = params.packing_density;
-        cube_side_ = cube_side_for_density(params.box_count, packing_density_, min_side_, max_side_, Dim);
+        shape.packing_density = params.packing_density;
+        shape.cube_side =
+            cube_side_for_density(params.box_count, shape.packing_density, shape.min_side, shape.max_side, dim);
     }
-    require(cube_side_ >= max_side_, "the cube side x = " + shortest_number(cube_side_) +
-                                         " is smaller than the largest box side b = 1 (lower E or raise N)");
+    require(shape.cube_side >= shape.max_side, "the cube side x = " + shortest_number(shape.cube_side) +
+                                                   " is smaller than the largest box side b = 1 (lower E or raise N)");
+    return shape;
+}
 
+template <int Dim>
+DynamicEnvironment<Dim>::DynamicEnvironment(const EnvironmentParams& params) : params_(params), rng_(params.seed) {
+    const EnvironmentShape shape = environment_shape(params, Dim);
+    cube_side_ = shape.cube_side;
+    min_side_ = shape.min_side;
+    max_side_ = shape.max_side;
+    packing_density_ = shape.packing_density;
     place_new_boxes(params.box_count);
     publish_changes(0);
 }

@@ -2,14 +2,20 @@
 // Time and bytes per rank per step of smb::mpi::DistributedDetector on the paper's environment
 // (docs/distributed.md). Every rank runs the same environment (the same seed) and passes the
 // boxes whose id mod P is its rank, so the distribution says nothing about space; only the
-// detector's calls are timed. Usage: mpirun -np P smb_distributed_steps N STEPS [DIM [REGIONS_CSV]]
+// detector's calls are timed.
+// Usage: mpirun -np P smb_distributed_steps N STEPS [DIM [REGIONS_CSV]] [--moving F]
 // REGIONS_CSV: rank 0 writes there every rank's region after the last step (rank, then the
 // mins, then the maxes; infinite at the outer faces), for scripts/plot-distributed.py.
+// --moving F: at each step only a fraction F of the boxes (chosen by a hash of id and step, the
+// same whatever P) take the environment's motion; the others keep last step's coordinates.
+// Insertions and removals are the environment's. Default 1: every box moves, as in the paper.
 #include <mpi.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "smb/mpi/distributed_detector.hpp"
@@ -34,8 +40,19 @@ void write_regions(const smb::Box<double, Dim>& mine, int rank, int ranks, const
     std::fclose(out);
 }
 
+/// Whether box `id` moves at `step`: a hash (SplitMix64's finaliser) of both, below the fraction.
+bool moves_at(smb::BoxId id, int step, double fraction) {
+    std::uint64_t x = id * 0x9e3779b97f4a7c15ULL + static_cast<std::uint64_t>(step);
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    x ^= x >> 31;
+    return static_cast<double>(x >> 11) * 0x1.0p-53 < fraction;
+}
+
 template <int Dim>
-void run(std::size_t box_count, int steps, int rank, int ranks, const char* regions_path) {
+void run(std::size_t box_count, int steps, int rank, int ranks, const char* regions_path, double moving) {
     smb::workload::EnvironmentParams params;
     params.box_count = box_count;
     smb::workload::DynamicEnvironment<Dim> environment(params);
@@ -47,16 +64,24 @@ void run(std::size_t box_count, int steps, int rank, int ranks, const char* regi
     // Detector's order): seconds, local detection seconds, bytes of boxes, pairs and ids sent,
     // boxes in the region, boxes passed, pairs received, recuts.
     std::vector<double> sums(9, 0.0);
+    std::vector<smb::BoxId> last_ids;
+    std::vector<smb::Box<double, Dim>> last_boxes;
     for (int step = 0; step <= steps; ++step) {
         if (step > 0) environment.step();
+        ids.swap(last_ids);
+        boxes.swap(last_boxes);
         ids.clear();
         boxes.clear();
         const auto all_ids = environment.ids();
         const auto all_boxes = environment.boxes();
+        std::size_t last = 0;  // both in increasing id order
         for (std::size_t i = 0; i < all_ids.size(); ++i) {
             if (all_ids[i] % static_cast<smb::BoxId>(ranks) == static_cast<smb::BoxId>(rank)) {
+                while (last < last_ids.size() && last_ids[last] < all_ids[i]) ++last;
+                const bool stays = last < last_ids.size() && last_ids[last] == all_ids[i] && step > 0 &&
+                                   !moves_at(all_ids[i], step, moving);
                 ids.push_back(all_ids[i]);
-                boxes.push_back(all_boxes[i]);
+                boxes.push_back(stays ? last_boxes[last] : all_boxes[i]);
             }
         }
         MPI_Barrier(MPI_COMM_WORLD);
@@ -81,7 +106,7 @@ void run(std::size_t box_count, int steps, int rank, int ranks, const char* regi
     if (rank != 0) return;
     const double s = steps, p = ranks;
     const double boxes_per_step = total[6] / s;
-    std::printf("ranks %d dim %d boxes %.0f steps %d\n", ranks, Dim, boxes_per_step, steps);
+    std::printf("ranks %d dim %d boxes %.0f steps %d moving %g\n", ranks, Dim, boxes_per_step, steps, moving);
     std::printf("  seconds per step: slowest rank %.4f (its local detection %.4f), mean rank %.4f\n", largest[0] / s,
                 largest[1] / s, total[0] / s / p);
     std::printf("  bytes sent per rank per step: boxes %.0f, pairs %.0f, ids %.0f (mean); boxes %.0f (largest)\n",
@@ -97,14 +122,22 @@ int main(int argc, char** argv) {
     int rank = 0, ranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    double moving = 1;
+    for (int a = 1; a + 1 < argc; ++a) {
+        if (std::strcmp(argv[a], "--moving") != 0) continue;
+        moving = std::atof(argv[a + 1]);
+        for (int b = a; b + 2 < argc; ++b) argv[b] = argv[b + 2];
+        argc -= 2;
+        break;
+    }
     const std::size_t box_count = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 100000;
     const int steps = argc > 2 ? std::atoi(argv[2]) : 10;
     const int dim = argc > 3 ? std::atoi(argv[3]) : 3;
     const char* regions_path = argc > 4 ? argv[4] : nullptr;
     if (dim == 2) {
-        run<2>(box_count, steps, rank, ranks, regions_path);
+        run<2>(box_count, steps, rank, ranks, regions_path, moving);
     } else {
-        run<3>(box_count, steps, rank, ranks, regions_path);
+        run<3>(box_count, steps, rank, ranks, regions_path, moving);
     }
     MPI_Finalize();
     return 0;

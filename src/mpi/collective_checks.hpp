@@ -32,9 +32,4 @@ struct GlobalInputFindings {
 GlobalInputFindings agree_on_input(MPI_Comm comm, const LocalInputFindings& local, std::size_t local_boxes,
                                    std::span<unsigned long long> region_counts);
 
-/// Throws DuplicateIdError on every rank, naming the smallest id passed more than once on any
-/// rank or by two ranks. Each id travels to one rank chosen by its hash, which sorts what it
-/// receives. Collective; returns the bytes this rank sent to others.
-std::size_t check_ids_unique(MPI_Comm comm, std::span<const BoxId> ids);
-
 }  // namespace smb::mpi::detail

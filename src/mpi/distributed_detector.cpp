@@ -5,10 +5,14 @@
 #include <chrono>
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include "axial_regions.hpp"
 #include "collective_checks.hpp"
+#include "distributed_id_set.hpp"
 #include "exchange.hpp"
+#include "region_store.hpp"
+#include "sent_boxes.hpp"
 #include "smb/detector.hpp"
 
 namespace smb::mpi {
@@ -59,10 +63,16 @@ private:
     /// Checks this rank's input, then agrees with the others (throws on every rank alike) and
     /// recuts when the population is out of balance. Collective.
     void agree_and_balance(std::span<const BoxId> ids, std::span<const box_type> boxes);
-    /// Sends every box to each region it meets; fills region_ids_, region_boxes_, holders_.
-    void send_boxes_to_regions(std::span<const BoxId> ids, std::span<const box_type> boxes);
-    /// Runs the Detector over the region and sends each pair kept here to its holder(s).
-    std::vector<Pair> detect_in_region_and_hand_off();
+    /// Sends to each region the boxes that changed for it since the last step (all of them
+    /// after a recut) and updates store_ with what the others sent here.
+    void send_box_changes(std::span<const box_type> boxes);
+    /// Applies what arrived: the removals first, so that a box moving between ranks (removed by
+    /// one, inserted by another) ends held by the second.
+    void receive_box_changes(const std::vector<BoxId>& removals, const std::vector<BoxRecord<Real, Dim>>& upserts,
+                             const std::vector<int>& upsert_counts);
+    /// Runs the Detector over the region and sends each pair kept here to its holder(s); what
+    /// arrives here goes to pairs_received_.
+    void detect_in_region_and_hand_off();
 
     [[nodiscard]] bool lower_corner_is_here(const box_type& a, const box_type& b) const noexcept {
         for (int k = 0; k < Dim; ++k) {
@@ -76,11 +86,28 @@ private:
     int rank_ = 0;
     int ranks_ = 1;
     Detector<Real, Dim> detector_;
-    std::vector<BoxId> checked_ids_;  // the ids of the last step that passed the checks
+    DistributedIdSet id_set_;
     bool has_checked_ids_ = false;
-    std::vector<BoxId> region_ids_;
-    std::vector<box_type> region_boxes_;
-    std::vector<int> holders_;  // the rank that passed in each of the region's boxes
+    std::vector<std::size_t> order_;  // this step's boxes in id order
+    std::vector<BoxId> sorted_ids_;
+    SentBoxes<box_type> sent_;
+    SentBoxes<box_type> next_sent_;                            // this step's, swapped into sent_
+    std::vector<std::pair<int, std::size_t>> upsert_targets_;  // (region, box in id order)
+    std::vector<std::pair<int, BoxId>> removal_targets_;       // (region, id)
+    std::vector<BoxRecord<Real, Dim>> upsert_send_;
+    std::vector<BoxId> removal_send_;
+    std::vector<int> here_;
+    std::vector<BoxId> removals_received_;
+    std::vector<BoxRecord<Real, Dim>> upserts_received_;
+    /// A pair kept by this region, on its way to a holder.
+    struct AddressedPair {
+        int destination;
+        Pair pair;
+    };
+    std::vector<AddressedPair> kept_pairs_;
+    std::vector<Pair> pair_send_;
+    std::vector<Pair> pairs_received_;  // swapped with the caller's vector
+    RegionStore<box_type> store_;       // the region's boxes, with the rank that passed in each
 };
 
 template <std::floating_point Real, int Dim>
@@ -97,14 +124,20 @@ void DistributedState<Real, Dim>::agree_and_balance(std::span<const BoxId> ids, 
             ++region_counts[static_cast<std::size_t>(regions_.region_of(centre_of(boxes[i])))];
         }
     }
-    // An id set that is the same, in the same order, as the last step's cannot hold a new
-    // repeat; anything else (an insertion, a removal, a box moved between ranks) is checked.
+    order_.resize(n);
+    std::iota(order_.begin(), order_.end(), std::size_t{0});
+    const auto by_id = [&ids](std::size_t x, std::size_t y) { return ids[x] < ids[y]; };
+    if (!std::is_sorted(order_.begin(), order_.end(), by_id)) std::stable_sort(order_.begin(), order_.end(), by_id);
+    sorted_ids_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) sorted_ids_[k] = ids[order_[k]];
+    // An id set that is the same as the last step's cannot hold a new repeat; anything else (an
+    // insertion, a removal, a box moved between ranks) is checked.
+    const auto last_ids = id_set_.last_ids();
     local.ids_changed =
-        !has_checked_ids_ || !std::equal(ids.begin(), ids.end(), checked_ids_.begin(), checked_ids_.end());
+        !has_checked_ids_ || !std::equal(sorted_ids_.begin(), sorted_ids_.end(), last_ids.begin(), last_ids.end());
     const GlobalInputFindings global = agree_on_input(comm_, local, n, region_counts);
     stats_.id_bytes_sent = 0;
-    if (global.ids_changed_anywhere) stats_.id_bytes_sent = check_ids_unique(comm_, ids);
-    if (local.ids_changed) checked_ids_.assign(ids.begin(), ids.end());
+    if (global.ids_changed_anywhere) stats_.id_bytes_sent = id_set_.check_and_record(comm_, sorted_ids_);
     has_checked_ids_ = true;
 
     const double mean = static_cast<double>(global.total_boxes) / static_cast<double>(ranks_);
@@ -119,74 +152,117 @@ void DistributedState<Real, Dim>::agree_and_balance(std::span<const BoxId> ids, 
 }
 
 template <std::floating_point Real, int Dim>
-void DistributedState<Real, Dim>::send_boxes_to_regions(std::span<const BoxId> ids, std::span<const box_type> boxes) {
+void DistributedState<Real, Dim>::send_box_changes(std::span<const box_type> boxes) {
     using Record = BoxRecord<Real, Dim>;
-    std::vector<int> destinations;  // the regions of each box, box after box
-    std::vector<std::size_t> first(boxes.size() + 1, 0);
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-        regions_.regions_of(boxes[i], destinations);
-        first[i + 1] = destinations.size();
+    if (stats_.recut) {
+        // Other regions: every box goes anew to the regions it meets.
+        sent_.clear();
+        store_.clear();
     }
-    std::vector<int> counts(static_cast<std::size_t>(ranks_), 0);
-    for (int region : destinations) ++counts[static_cast<std::size_t>(region)];
-    std::vector<int> fill(counts.size(), 0);
-    std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
-    std::vector<Record> send(destinations.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-        for (std::size_t d = first[i]; d < first[i + 1]; ++d) {
-            send[static_cast<std::size_t>(fill[static_cast<std::size_t>(destinations[d])]++)] =
-                Record{ids[i], boxes[i]};
+    const auto contains = [](std::span<const int> list, int region) {
+        return std::find(list.begin(), list.end(), region) != list.end();
+    };
+    // First the destinations (region, box), then a counting sort into the send buffers; the
+    // buffers are members, so that a step reuses the last one's memory.
+    upsert_targets_.clear();
+    removal_targets_.clear();
+    const auto remove_everywhere = [&](std::size_t last) {
+        for (int region : sent_.regions_of(last)) removal_targets_.push_back({region, sent_.ids[last]});
+    };
+    next_sent_.clear();
+    std::vector<int>& here = here_;
+    std::size_t last = 0;  // both in id order: a merge
+    for (std::size_t k = 0; k < order_.size(); ++k) {
+        const BoxId id = sorted_ids_[k];
+        const box_type& box = boxes[order_[k]];
+        here.clear();
+        regions_.regions_of(box, here);
+        while (last < sent_.size() && sent_.ids[last] < id) remove_everywhere(last++);
+        const bool known = last < sent_.size() && sent_.ids[last] == id;
+        const std::span<const int> before = known ? sent_.regions_of(last) : std::span<const int>();
+        const bool moved = !known || !(sent_.boxes[last] == box);
+        for (int region : here) {
+            if (moved || !contains(before, region)) upsert_targets_.push_back({region, k});
         }
+        for (int region : before) {
+            if (!contains(here, region)) removal_targets_.push_back({region, id});
+        }
+        if (known) ++last;
+        next_sent_.add(id, box, here);
     }
-    std::vector<int> receive_counts;
-    const std::vector<Record> received = all_to_all(comm_, send, counts, receive_counts);
-    stats_.box_bytes_sent = bytes_to_others<Record>(counts, rank_);
+    while (last < sent_.size()) remove_everywhere(last++);
+    std::swap(sent_, next_sent_);
 
-    region_ids_.resize(received.size());
-    region_boxes_.resize(received.size());
-    holders_.resize(received.size());
-    std::size_t at = 0;
-    stats_.boxes_owned = 0;
-    for (int source = 0; source < ranks_; ++source) {
-        for (int r = 0; r < receive_counts[static_cast<std::size_t>(source)]; ++r, ++at) {
-            region_ids_[at] = received[at].id;
-            region_boxes_[at] = received[at].box;
-            holders_[at] = source;
-            if (regions_.region_of(centre_of(received[at].box)) == rank_) ++stats_.boxes_owned;
-        }
-    }
-    stats_.boxes_in_region = received.size();
+    std::vector<int> removal_counts, upsert_counts, removals_received, upserts_received;
+    const auto fill_by_region = [this](const auto& targets, auto& send, std::vector<int>& counts, auto record_of) {
+        counts.assign(static_cast<std::size_t>(ranks_), 0);
+        for (const auto& target : targets) ++counts[static_cast<std::size_t>(target.first)];
+        std::vector<int> fill(counts.size(), 0);
+        std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
+        send.resize(targets.size());
+        for (const auto& target : targets)
+            send[static_cast<std::size_t>(fill[static_cast<std::size_t>(target.first)]++)] = record_of(target.second);
+    };
+    fill_by_region(removal_targets_, removal_send_, removal_counts, [](BoxId id) { return id; });
+    fill_by_region(upsert_targets_, upsert_send_, upsert_counts, [&](std::size_t k) {
+        return Record{sorted_ids_[k], boxes[order_[k]]};
+    });
+    all_to_all(comm_, removal_send_, removal_counts, removals_received, removals_received_);
+    all_to_all(comm_, upsert_send_, upsert_counts, upserts_received, upserts_received_);
+    stats_.box_bytes_sent =
+        bytes_to_others<BoxId>(removal_counts, rank_) + bytes_to_others<Record>(upsert_counts, rank_);
+    receive_box_changes(removals_received_, upserts_received_, upserts_received);
 }
 
 template <std::floating_point Real, int Dim>
-std::vector<Pair> DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
-    struct Addressed {
-        int destination;
-        Pair pair;
-    };
-    std::vector<Addressed> kept;
+void DistributedState<Real, Dim>::receive_box_changes(const std::vector<BoxId>& removals,
+                                                      const std::vector<BoxRecord<Real, Dim>>& upserts,
+                                                      const std::vector<int>& upsert_counts) {
+    for (BoxId id : removals) store_.remove(id);
+    store_.reserve(store_.size() + upserts.size());
+    std::size_t at = 0;
+    for (int source = 0; source < ranks_; ++source) {
+        for (int r = 0; r < upsert_counts[static_cast<std::size_t>(source)]; ++r, ++at) {
+            store_.upsert(upserts[at].id, upserts[at].box, source);
+        }
+    }
+    stats_.boxes_owned = 0;
+    for (const box_type& box : store_.boxes()) {
+        if (regions_.region_of(centre_of(box)) == rank_) ++stats_.boxes_owned;
+    }
+    stats_.boxes_in_region = store_.size();
+}
+
+template <std::floating_point Real, int Dim>
+void DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
+    std::vector<AddressedPair>& kept = kept_pairs_;
+    kept.clear();
     const bool both = settings_.hand_off == PairHandOff::both_holders;
     const auto start = std::chrono::steady_clock::now();
     // The sink streams the pairs, so no pair limit applies here: a limit reached on one rank
     // alone would leave the others waiting in the exchange.
-    detector_.detect(std::span<const box_type>(region_boxes_), [&](std::span<const Pair> chunk) {
+    const auto& region_ids = store_.ids();
+    const auto& region_boxes = store_.boxes();
+    const auto& holders = store_.holders();
+    detector_.detect(std::span<const box_type>(region_boxes), [&](std::span<const Pair> chunk) {
         for (const Pair& local : chunk) {
-            if (!lower_corner_is_here(region_boxes_[local.a], region_boxes_[local.b])) continue;
+            if (!lower_corner_is_here(region_boxes[local.a], region_boxes[local.b])) continue;
             std::size_t first = local.a, second = local.b;
-            if (region_ids_[second] < region_ids_[first]) std::swap(first, second);
-            const Pair pair{region_ids_[first], region_ids_[second]};
-            kept.push_back({holders_[first], pair});
-            if (both && holders_[second] != holders_[first]) kept.push_back({holders_[second], pair});
+            if (region_ids[second] < region_ids[first]) std::swap(first, second);
+            const Pair pair{region_ids[first], region_ids[second]};
+            kept.push_back({holders[first], pair});
+            if (both && holders[second] != holders[first]) kept.push_back({holders[second], pair});
         }
     });
     stats_.local_detect_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats_.pairs_found = 0;
     std::vector<int> counts(static_cast<std::size_t>(ranks_), 0);
-    for (const Addressed& item : kept) ++counts[static_cast<std::size_t>(item.destination)];
+    for (const AddressedPair& item : kept) ++counts[static_cast<std::size_t>(item.destination)];
     std::vector<int> fill(counts.size(), 0);
     std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
-    std::vector<Pair> send(kept.size());
-    for (const Addressed& item : kept)
+    std::vector<Pair>& send = pair_send_;
+    send.resize(kept.size());
+    for (const AddressedPair& item : kept)
         send[static_cast<std::size_t>(fill[static_cast<std::size_t>(item.destination)]++)] = item.pair;
     stats_.pairs_found = both ? 0 : kept.size();
     if (both) {
@@ -197,9 +273,8 @@ std::vector<Pair> DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
         }
     }
     std::vector<int> receive_counts;
-    std::vector<Pair> received = all_to_all(comm_, send, counts, receive_counts);
+    all_to_all(comm_, send, counts, receive_counts, pairs_received_);
     stats_.pair_bytes_sent = bytes_to_others<Pair>(counts, rank_);
-    return received;
 }
 
 template <std::floating_point Real, int Dim>
@@ -209,10 +284,11 @@ void DistributedState<Real, Dim>::detect(std::span<const BoxId> ids, std::span<c
     stats_ = DistributedStats{};
     agree_and_balance(ids, boxes);
     stats_.boxes_passed = boxes.size();
-    send_boxes_to_regions(ids, boxes);
-    std::vector<Pair> received = detect_in_region_and_hand_off();
-    stats_.pairs_received = received.size();
-    pairs.swap(received);
+    send_box_changes(boxes);
+    detect_in_region_and_hand_off();
+    stats_.pairs_received = pairs_received_.size();
+    // The caller's vector takes the pairs; its memory serves the next step's exchange.
+    pairs.swap(pairs_received_);
     stats_.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

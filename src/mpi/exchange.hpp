@@ -13,11 +13,12 @@
 namespace smb::mpi::detail {
 
 /// Sends send[displacement(r) .. + send_counts[r]) to rank r (the records grouped by
-/// destination, in rank order) and returns what every rank sent here, grouped by source in rank
-/// order; `receive_counts` gets how many came from each rank.
+/// destination, in rank order) and puts in `received` what every rank sent here, grouped by
+/// source in rank order; `receive_counts` gets how many came from each rank. `received` keeps
+/// its memory from call to call (a step's exchange is about the size of the last one's).
 template <class Record>
-std::vector<Record> all_to_all(MPI_Comm comm, const std::vector<Record>& send, const std::vector<int>& send_counts,
-                               std::vector<int>& receive_counts) {
+void all_to_all(MPI_Comm comm, const std::vector<Record>& send, const std::vector<int>& send_counts,
+                std::vector<int>& receive_counts, std::vector<Record>& received) {
     static_assert(std::is_trivially_copyable_v<Record>);
     const auto ranks = send_counts.size();
     receive_counts.assign(ranks, 0);
@@ -28,13 +29,21 @@ std::vector<Record> all_to_all(MPI_Comm comm, const std::vector<Record>& send, c
     const std::size_t total = ranks == 0 ? 0
                                          : static_cast<std::size_t>(receive_displacements.back()) +
                                                static_cast<std::size_t>(receive_counts.back());
-    std::vector<Record> received(total);
+    received.resize(total);
     MPI_Datatype record_type = MPI_DATATYPE_NULL;
     MPI_Type_contiguous(static_cast<int>(sizeof(Record)), MPI_BYTE, &record_type);
     MPI_Type_commit(&record_type);
     MPI_Alltoallv(send.data(), send_counts.data(), send_displacements.data(), record_type, received.data(),
                   receive_counts.data(), receive_displacements.data(), record_type, comm);
     MPI_Type_free(&record_type);
+}
+
+/// As above, into a new vector.
+template <class Record>
+std::vector<Record> all_to_all(MPI_Comm comm, const std::vector<Record>& send, const std::vector<int>& send_counts,
+                               std::vector<int>& receive_counts) {
+    std::vector<Record> received;
+    all_to_all(comm, send, send_counts, receive_counts, received);
     return received;
 }
 

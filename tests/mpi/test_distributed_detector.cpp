@@ -3,6 +3,8 @@
 // scene: each pair once (or once on each holder), on the rank the hand-off names.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -32,11 +34,16 @@ TYPED_TEST_SUITE(DistributedDetection, DetectorTypes);
 
 /// Runs one step and checks every rank's pairs against brute force: the union is exact, each
 /// pair sits on the rank(s) the hand-off names, and nowhere else.
+/// `reversed`: each rank passes its boxes in the reverse order of the scene's.
 template <class DetectorT, class BoxT>
-void expect_exact_step(DetectorT& detector, const Scene<BoxT>& scene, PairHandOff hand_off) {
+void expect_exact_step(DetectorT& detector, const Scene<BoxT>& scene, PairHandOff hand_off, bool reversed = false) {
     std::vector<BoxId> ids;
     std::vector<BoxT> boxes;
     scene.share_of(rank_of(), ids, boxes);
+    if (reversed) {
+        std::reverse(ids.begin(), ids.end());
+        std::reverse(boxes.begin(), boxes.end());
+    }
     std::vector<Pair> pairs;
     detector.detect(ids, boxes, pairs);
     const std::vector<RankedPair> found = gather_pairs(pairs);
@@ -133,6 +140,81 @@ TYPED_TEST(DistributedDetection, RandomScenesOverManySteps) {
             EXPECT_EQ(recuts, 0);
         } else {
             EXPECT_GE(recuts, 1);
+        }
+    }
+}
+
+/// Most boxes stay still; a few move a little (some across a plane), teleport, pass to another
+/// rank with or without moving, vanish or appear: what the exchange of changes must follow.
+template <class BoxT>
+void advance_sparsely(Scene<BoxT>& scene, std::mt19937_64& engine, int ranks) {
+    using Real = typename BoxT::real_type;
+    std::uniform_real_distribution<double> step(-0.05, 0.05);
+    std::uniform_int_distribution<int> percent(0, 99);
+    std::uniform_int_distribution<int> holder(0, ranks - 1);
+    for (std::size_t i = 0; i < scene.boxes.size(); ++i) {
+        BoxT& box = scene.boxes[i];
+        const int roll = percent(engine);
+        if (roll < 85) continue;
+        if (roll < 92 || roll >= 98) {
+            for (int k = 0; k < BoxT::dimension; ++k) {
+                const Real shift = static_cast<Real>(step(engine));
+                box.min[k] += shift;
+                box.max[k] += shift;
+            }
+        } else if (roll < 95) {
+            box = random_box<BoxT>(engine, 0.05);
+        }
+        if (roll >= 95) scene.holders[i] = holder(engine);
+    }
+    for (int r = 0; r < 3 && !scene.ids.empty(); ++r) {
+        const std::size_t at = engine() % scene.ids.size();
+        scene.ids.erase(scene.ids.begin() + static_cast<std::ptrdiff_t>(at));
+        scene.boxes.erase(scene.boxes.begin() + static_cast<std::ptrdiff_t>(at));
+        scene.holders.erase(scene.holders.begin() + static_cast<std::ptrdiff_t>(at));
+    }
+    for (int r = 0; r < 3; ++r) {
+        const BoxId id = (BoxId{1} << 62) | engine() % (BoxId{1} << 40);
+        if (scene.holder_of(id) >= 0) continue;
+        scene.ids.push_back(id);
+        scene.boxes.push_back(random_box<BoxT>(engine, 0.05));
+        scene.holders.push_back(holder(engine));
+    }
+}
+
+/// The bytes of boxes and of ids that all ranks sent at the last step.
+template <class DetectorT>
+std::array<unsigned long long, 2> bytes_sent_by_all(const DetectorT& detector) {
+    std::array<unsigned long long, 2> bytes = {detector.last_stats().box_bytes_sent,
+                                               detector.last_stats().id_bytes_sent};
+    MPI_Allreduce(MPI_IN_PLACE, bytes.data(), 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+    return bytes;
+}
+
+TYPED_TEST(DistributedDetection, MostBoxesStillOnlyTheChangesTravel) {
+    using BoxT = typename TypeParam::box_type;
+    for (PairHandOff hand_off : {PairHandOff::smaller_id_holder, PairHandOff::both_holders}) {
+        std::mt19937_64 engine(99);
+        Scene<BoxT> scene = random_scene<BoxT>(engine, scene_boxes, ranks_of());
+        DistributedSettings settings;
+        settings.hand_off = hand_off;
+        TypeParam detector(MPI_COMM_WORLD, settings);
+        expect_exact_step(detector, scene, hand_off);
+        const auto first = bytes_sent_by_all(detector);
+        for (int step = 1; step < steps; ++step) {
+            SCOPED_TRACE(step);
+            advance_sparsely(scene, engine, ranks_of());
+            expect_exact_step(detector, scene, hand_off, step % 3 == 0);
+            const auto bytes = bytes_sent_by_all(detector);
+            if (ranks_of() > 1 && !detector.last_stats().recut) {
+                EXPECT_LT(bytes[0], first[0] / 2);
+                EXPECT_LT(bytes[1], first[1] / 2);
+            }
+        }
+        // Nothing changed, in another order: nothing travels but the pairs.
+        expect_exact_step(detector, scene, hand_off, true);
+        if (!detector.last_stats().recut) {
+            EXPECT_EQ(bytes_sent_by_all(detector), (std::array<unsigned long long, 2>{0, 0}));
         }
     }
 }

@@ -99,6 +99,39 @@ TEST_F(DistributedErrors, DuplicateLargestIdOnTheFirstStep) {
     expect_thrown_everywhere<DuplicateIdError>(fresh, ids, boxes, std::to_string(std::numeric_limits<BoxId>::max()));
 }
 
+TEST_F(DistributedErrors, SameNewIdInsertedByTwoRanksAtOnce) {
+    // Only the inserted ids travel: the repeat is found among them (on one rank: twice there).
+    ids[2] = 1000;
+    if (rank_of() == last) ids[6] = 1000;
+    if (ranks_of() == 1) ids[6] = 1000;
+    expect_thrown_everywhere<DuplicateIdError>(detector, ids, boxes, "id 1000 ");
+}
+
+TEST_F(DistributedErrors, AnIdPassedFromOneRankToAnotherIsNoRepeat) {
+    // The last rank's last box goes to rank 0: removed by one, inserted by the other at once.
+    const BoxId moving = static_cast<BoxId>(last * 10 + 9);
+    const Box3d box = Box3d{{static_cast<double>(moving), 0, 0}, {static_cast<double>(moving) + 1, 1, 1}};
+    if (rank_of() == last) {
+        ids.pop_back();
+        boxes.pop_back();
+    }
+    if (rank_of() == 0) {
+        ids.push_back(moving);
+        boxes.push_back(box);
+    }
+    for (int step = 0; step < 2; ++step) {
+        detector.detect(ids, boxes, pairs);
+        EXPECT_EQ(gather_pairs(pairs).size(), static_cast<std::size_t>(10 * ranks_of() - 1));
+    }
+    // And the id it left behind is free: the last rank may not take it back while rank 0 has it.
+    if (ranks_of() > 1 && rank_of() == last) {
+        ids.push_back(moving);
+        boxes.push_back(box);
+    }
+    if (ranks_of() == 1) ids.push_back(moving), boxes.push_back(box);
+    expect_thrown_everywhere<DuplicateIdError>(detector, ids, boxes, "id " + std::to_string(moving) + " ");
+}
+
 TEST_F(DistributedErrors, LengthsDifferOnOneRank) {
     if (rank_of() == last) ids.pop_back();
     expect_thrown_everywhere<ArgumentError>(detector, ids, boxes, "differ in length on 1 rank");

@@ -13,6 +13,7 @@
 
 #include "exit_status.hpp"
 #include "file_streams.hpp"
+#include "mpi_run.hpp"
 #include "pair_csv.hpp"
 #include "scene_csv.hpp"
 #include "smb/mpi/distributed_detector.hpp"
@@ -20,27 +21,6 @@
 namespace smb::cli {
 
 namespace {
-
-/// MPI for the length of the command (unless the caller had started it already).
-class MpiRun {
-public:
-    MpiRun() {
-        int started = 0;
-        MPI_Initialized(&started);
-        if (!started) {
-            MPI_Init(nullptr, nullptr);
-            owns_ = true;
-        }
-    }
-    ~MpiRun() {
-        if (owns_) MPI_Finalize();
-    }
-    MpiRun(const MpiRun&) = delete;
-    MpiRun& operator=(const MpiRun&) = delete;
-
-private:
-    bool owns_ = false;
-};
 
 template <int Dim>
 struct Row {

@@ -11,6 +11,7 @@
 
 #include "exit_status.hpp"
 #include "option_checks.hpp"
+#include "pair_counts_file.hpp"
 #include "peak_memory.hpp"
 #include "progress_bar.hpp"
 #include "run_report.hpp"
@@ -19,6 +20,9 @@
 #include "smb/workload/swap_remove_mirror.hpp"
 #include "smb/workload/world_sync.hpp"
 #include "smb/world.hpp"
+#ifdef SMB_CLI_HAS_MPI
+#include "distributed_run.hpp"
+#endif
 
 namespace smb::cli {
 
@@ -72,17 +76,17 @@ RunCommand::RunCommand(CLI::App& parent)
                      "threads detect() may use; 0 for as many as OpenMP offers (DetectionSettings)")
         ->check(in_closed_range(0, 1024))
         ->capture_default_str();
-    app_->add_option("--pipeline", pipeline_,
-                     "persistent: the default pipeline (persistent cuts); paper: the paper's "
-                     "lists as written (WorldSettings::pipeline); detector: persistent cuts "
-                     "through smb::Detector, over the environment's own array of boxes")
-        ->check(CLI::IsMember({"persistent", "paper", "detector"}))
-        ->capture_default_str();
-    app_->add_option("--skin", skin_,
-                     "detector only: grow every box by this much on each side and keep the "
-                     "pairs of grown boxes from step to step (DetectorSettings::skin; 0: off)")
-        ->check(at_least(0))
-        ->capture_default_str();
+    auto* pipeline = app_->add_option("--pipeline", pipeline_,
+                                      "persistent: the default pipeline (persistent cuts); paper: the paper's "
+                                      "lists as written (WorldSettings::pipeline); detector: persistent cuts "
+                                      "through smb::Detector, over the environment's own array of boxes")
+                         ->check(CLI::IsMember({"persistent", "paper", "detector"}))
+                         ->capture_default_str();
+    auto* skin = app_->add_option("--skin", skin_,
+                                  "detector only: grow every box by this much on each side and keep the "
+                                  "pairs of grown boxes from step to step (DetectorSettings::skin; 0: off)")
+                     ->check(at_least(0))
+                     ->capture_default_str();
     auto* check_every = app_->add_option("--check-every", check_every_,
                                          "also check every K-th step against the grid reference "
                                          "(the last step is always checked)")
@@ -90,10 +94,27 @@ RunCommand::RunCommand(CLI::App& parent)
     app_->add_flag("--no-check", no_check_, "skip the reference check")->excludes(check_every);
     app_->add_flag("--json", json_, "print the summary as one JSON object on standard output");
     app_->add_flag("--no-progress", no_progress_, "never draw the progress bar");
+    app_->add_option("--pair-counts", pair_counts_, "write the number of pairs of every step to this CSV (step,pairs)");
+#ifdef SMB_CLI_HAS_MPI
+    app_->add_flag("--distributed", distributed_,
+                   "run over the ranks of an MPI run (mpirun -np P smb run --distributed ...): each rank generates "
+                   "the boxes whose id mod P is its rank, smb::mpi detects; the same scene, pairs and check")
+        ->excludes(pipeline)
+        ->excludes(skin);
+#else
+    (void)pipeline;
+    (void)skin;
+#endif
 }
 
 int RunCommand::run() const {
     if (skin_ > 0 && pipeline_ != "detector") throw CLI::ValidationError("--skin", "needs --pipeline detector");
+#ifdef SMB_CLI_HAS_MPI
+    if (distributed_) {
+        return run_distributed_environment(
+            environment_, {target_cell_population_, threads_, check_every_, !no_check_, json_, pair_counts_});
+    }
+#endif
     return environment_.dimension == 2 ? run_in<2>() : run_in<3>();
 }
 
@@ -169,6 +190,7 @@ int RunCommand::run_in() const {
     run.final_boxes = environment.size();
     run.bytes_held = through_detector ? detector.bytes_held() : world.bytes_held();
     run.peak_resident_bytes = peak_resident_bytes();
+    if (!pair_counts_.empty()) write_pair_counts(run, pair_counts_);
 
     if (json_) {
         std::cout << json_summary(run).dump(2) << '\n';

@@ -34,6 +34,8 @@ private:
     bool no_check_ = false;
     bool json_ = false;
     bool no_progress_ = false;
+    std::string pair_counts_;
+    bool distributed_ = false;
 };
 
 }  // namespace smb::cli

@@ -128,15 +128,54 @@ char level_axis(int dimension, std::size_t level) { return "xyz"[static_cast<std
 
 }  // namespace
 
-void print_text_summary(const RunRecord& run, std::ostream& out) {
-    auto line = [&out](std::string_view label, const std::string& text) {
-        out << fmt::format("  {:<22}{}\n", label, text);
-    };
+void print_summary_line(std::ostream& out, std::string_view label, const std::string& text) {
+    out << fmt::format("  {:<22}{}\n", label, text);
+}
+
+std::string summary_duration(double seconds) { return duration_text(seconds); }
+
+void print_summary_heading(const RunRecord& run, std::ostream& out) {
     out << fmt::format(
         "smb run: {}D, N {} -> {}, E {:g} (cube side {:.4g}), H {:g}, update factor {:g}, {}, "
         "seed {}\n",
         run.dimension, run.initial_boxes, run.final_boxes, run.packing_density, run.cube_side, run.size_ratio,
         run.update_factor, counted(run.steps.size(), "step"), run.seed);
+}
+
+void print_summary_pairs(const RunRecord& run, std::ostream& out) {
+    if (run.steps.size() >= 2) {
+        print_summary_line(
+            out, "pairs per step",
+            fmt::format("median {:.0f}, last {}", median_after_build(run, pair_count), run.steps.back().stats.pairs));
+    } else if (!run.steps.empty()) {
+        print_summary_line(out, "pairs", fmt::format("{}", run.steps.back().stats.pairs));
+    }
+}
+
+void print_summary_check(const RunRecord& run, std::ostream& out) {
+    const CheckRecord& check = run.check;
+    if (!check.enabled) {
+        print_summary_line(out, "check", "skipped");
+    } else if (check.ok()) {
+        print_summary_line(
+            out, "check",
+            fmt::format("OK, {} the grid reference (last: step {}, reference {})",
+                        check.steps_checked == 1 ? "1 step equals" : counted(check.steps_checked, "step") + " equal",
+                        check.last_checked_step, duration_text(check.last_reference_seconds)));
+    } else {
+        print_summary_line(
+            out, "check",
+            fmt::format("MISMATCH in {} of {}; step {}: {} missing (e.g. {}), {} extra "
+                        "(e.g. {})",
+                        check.mismatched_steps, counted(check.steps_checked, "checked step"), check.first_bad_step,
+                        counted(check.missing_pairs, "pair"), pair_text(check.example_missing), check.extra_pairs,
+                        pair_text(check.example_extra)));
+    }
+}
+
+void print_text_summary(const RunRecord& run, std::ostream& out) {
+    auto line = [&out](std::string_view label, const std::string& text) { print_summary_line(out, label, text); };
+    print_summary_heading(run, out);
     line("pipeline", fmt::format("{}, {} thread{}", run.pipeline, run.threads, run.threads == 1 ? "" : "s"));
     if (!run.steps.empty()) {
         const StepRecord& build = run.steps.front();
@@ -169,32 +208,15 @@ void print_text_summary(const RunRecord& run, std::ostream& out) {
         }
         line("world update (median)",
              duration_text(median_after_build(run, world_update_time)) + " in the batch calls");
-        line("pairs per step",
-             fmt::format("median {:.0f}, last {}", median_after_build(run, pair_count), run.steps.back().stats.pairs));
-    } else if (!run.steps.empty()) {
-        line("pairs", fmt::format("{}", run.steps.back().stats.pairs));
     }
+    print_summary_pairs(run, out);
     const std::string peak = run.peak_resident_bytes ? fmt::format(", peak RSS {:.1f} MB",
                                                                    static_cast<double>(*run.peak_resident_bytes) / 1e6)
                                                      : std::string();
     line("memory", fmt::format("{:.1f} bytes per box ({:.1f} MB held{})", bytes_per_box(run),
                                static_cast<double>(run.bytes_held) / 1e6, peak));
 
-    const CheckRecord& check = run.check;
-    if (!check.enabled) {
-        line("check", "skipped");
-    } else if (check.ok()) {
-        line("check",
-             fmt::format("OK, {} the grid reference (last: step {}, reference {})",
-                         check.steps_checked == 1 ? "1 step equals" : counted(check.steps_checked, "step") + " equal",
-                         check.last_checked_step, duration_text(check.last_reference_seconds)));
-    } else {
-        line("check", fmt::format("MISMATCH in {} of {}; step {}: {} missing (e.g. {}), {} extra "
-                                  "(e.g. {})",
-                                  check.mismatched_steps, counted(check.steps_checked, "checked step"),
-                                  check.first_bad_step, counted(check.missing_pairs, "pair"),
-                                  pair_text(check.example_missing), check.extra_pairs, pair_text(check.example_extra)));
-    }
+    print_summary_check(run, out);
 }
 
 nlohmann::ordered_json json_summary(const RunRecord& run) {

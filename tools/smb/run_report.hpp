@@ -8,6 +8,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "smb/pair.hpp"
@@ -73,5 +74,18 @@ struct Spread {
 
 void print_text_summary(const RunRecord& run, std::ostream& out);
 [[nodiscard]] nlohmann::ordered_json json_summary(const RunRecord& run);
+
+// Parts of the text summary, for `smb run --distributed`, whose heading, pairs and check lines
+// must read as the serial command's.
+/// "  label                 text": one line of the summary.
+void print_summary_line(std::ostream& out, std::string_view label, const std::string& text);
+/// A duration as the summary writes it (ms below a second).
+[[nodiscard]] std::string summary_duration(double seconds);
+/// The first line: the scene's parameters and the number of steps.
+void print_summary_heading(const RunRecord& run, std::ostream& out);
+/// "pairs per step" (median and last), or "pairs" for a run of one step.
+void print_summary_pairs(const RunRecord& run, std::ostream& out);
+/// The check's outcome against the grid reference.
+void print_summary_check(const RunRecord& run, std::ostream& out);
 
 }  // namespace smb::cli

@@ -73,7 +73,9 @@ class DistributedState;
 /// How: the space is cut into one region per rank by axial cuts of equal population (the
 /// ranks' count factored over the axes; the first axis cut into slabs, each slab on the next
 /// axis, ...), found by bisection with MPI_Allreduce of counts: no rank gathers the boxes. Each
-/// box travels to every region it overlaps (MPI_Alltoallv); each rank runs a persistent
+/// box travels to every region it overlaps (MPI_Alltoallv), and after that only when it moved,
+/// left or entered a region, vanished or passed to another rank: each region keeps the boxes it
+/// received between steps, until the regions are cut again. Each rank runs a persistent
 /// smb::Detector over its region's boxes and keeps a pair only when the lower corner of the two
 /// boxes' intersection lies in its region (regions are half-open, [lower, upper) on each
 /// axis), so every pair is kept by exactly one region. The pairs then travel to their holders.
@@ -86,8 +88,9 @@ class DistributedState;
 /// or min > max; the smallest such id is named), DuplicateIdError (an id passed twice, on one
 /// rank or on two; the smallest is named). The detector stays valid; `pairs` stays as it was.
 ///
-/// Memory: a rank holds its own boxes' ids, its region's boxes (its share and the ghosts) and
-/// its pairs; never all boxes. Counts per rank and per message must stay below 2^31 (MPI's int).
+/// Memory: a rank holds its own boxes' ids, coordinates and regions as last sent, its region's
+/// boxes (its share and the ghosts), the ids of all ranks that hash to it (about N/P, for the
+/// duplicate check) and its pairs; never all boxes. Counts per rank and per message must stay below 2^31 (MPI's int).
 ///
 /// Thread safety: as smb::Detector; MPI must be initialised (any thread level) and not
 /// finalised while the detector is used. The communicator is duplicated, so the detector's
