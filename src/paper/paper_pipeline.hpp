@@ -51,11 +51,19 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept;
 
-private:
     using Entry = AxisEntry<Real>;
-
     using Level = PaperLevel<Real>;  // the paper's Y1, X12 in 2D; Z1, Y12, X123 in 3D
 
+    // Read-only views of the lists as the last detection left them, so that a test can hold
+    // them against the paper's worked example.
+    [[nodiscard]] const Level& level(int depth) const noexcept { return levels_[static_cast<std::size_t>(depth)]; }
+    [[nodiscard]] std::span<const Item> cell_list(int depth) const noexcept {
+        return cell_lists_[static_cast<std::size_t>(depth)];
+    }
+    [[nodiscard]] const std::vector<std::uint8_t>& oversized() const noexcept { return oversized_; }
+    [[nodiscard]] SegmentId cuts() const noexcept { return cuts_; }
+
+private:
     static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
 
     void choose_cuts();
