@@ -58,9 +58,9 @@ TEST(PaperExample, RegroupingMovesExactlyTheSingularItems) {
     const auto previous = entries(kX12Previous, key);
     const std::vector<std::uint32_t> old_sections{0, 24, 48};
     const std::vector<std::uint32_t> new_sections{0, 24, 48};
-    std::vector<AxisEntry<double>> regrouped;
+    std::vector<AxisEntry<double>> regrouped = previous;
     RegroupScratch<double> scratch;
-    regroup_by_parent_segment<double>(previous, old_sections, {}, slab_of_pair(), new_sections, regrouped, scratch);
+    regroup_by_parent_segment<double>(regrouped, old_sections, {}, slab_of_pair(), new_sections, scratch);
     const auto got = items(regrouped);
     EXPECT_EQ(as_set(got, 0, 24), as_set(kX12Regrouped, 0, 24));
     EXPECT_EQ(as_set(got, 24, 48), as_set(kX12Regrouped, 24, 48));

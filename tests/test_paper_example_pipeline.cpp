@@ -36,9 +36,9 @@ using Pipeline2 = PaperPipeline<double, 2>;
 /// The boxes of the paper's Fig. 4 (the step of expressions (2) and (8)): each coordinate is the
 /// rank of its value in a total order consistent with the paper's lists.
 const std::vector<Box2d> kBoxes = {
-    {{17, 3}, {19, 5}},  {{0, 18}, {2, 21}},   {{16, 1}, {18, 4}},  {{3, 15}, {4, 17}},
-    {{8, 0}, {9, 2}},    {{13, 12}, {21, 16}}, {{1, 20}, {5, 22}},  {{10, 8}, {12, 11}},
-    {{14, 13}, {23, 14}}, {{6, 7}, {7, 10}},   {{11, 6}, {15, 9}},  {{20, 19}, {22, 23}},
+    {{17, 3}, {19, 5}},   {{0, 18}, {2, 21}},   {{16, 1}, {18, 4}}, {{3, 15}, {4, 17}},
+    {{8, 0}, {9, 2}},     {{13, 12}, {21, 16}}, {{1, 20}, {5, 22}}, {{10, 8}, {12, 11}},
+    {{14, 13}, {23, 14}}, {{6, 7}, {7, 10}},    {{11, 6}, {15, 9}}, {{20, 19}, {22, 23}},
 };
 
 /// The step before: box 7's top lies above box 5's bottom, so the paper's singular items
@@ -159,7 +159,7 @@ TEST_F(PaperExamplePipeline, ListsAfterEveryStepAreThePapers) {
     EXPECT_EQ(paper_x12(pipeline_), kX12Sorted);
     EXPECT_EQ(pipeline_.level(1).segment_begin, (std::vector<std::uint32_t>{0, 12, 24, 36, 48}));
     for (Item corner = 0; corner < kVertices; ++corner) {
-        EXPECT_EQ(pipeline_.level(1).segment_of[corner] + 1, kSubListIndex[paper_vertex(corner)]) << corner;
+        EXPECT_EQ(pipeline_.cell_of()[corner] + 1, kSubListIndex[paper_vertex(corner)]) << corner;
     }
     // (10): Y2, Y1 regrouped by sub-list.
     std::vector<Item> y2;
@@ -186,8 +186,9 @@ TEST_F(PaperExamplePipeline, FlagMatrixFindsSevenTenAndTheMaskSkipsItOnce) {
         typename CellChecker<double, 2>::CellLists lists;
         lists.upper[0] = pipeline_.cell_list(0).subspan(first, 12);
         lists.deepest = std::span<const AxisEntry<double>>(x12.list.data() + first, 12);
-        checker.check(lists, pipeline_.oversized(), store_.boxes(), map, mask,
-                      [&](Slot a, Slot b) { reported[cell].push_back({a, b}); });
+        checker.check(lists, pipeline_.oversized(), store_.boxes(), map, mask, [&](Slot a, Slot b) {
+            reported[cell].push_back({a, b});
+        });
         if (cell < 2) {
             // The flag matrix of sub-lists 1 and 2 holds both axes' bits for (7, 10).
             const std::uint32_t a = std::min(map.find(7), map.find(10));
