@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The worked example of the paper's Section 2.4 (Fig. 4, expressions (2)-(13)): twelve 2D boxes,
-// vertices 4n..4n+3 of box n. The paper gives no coordinates, only lists, so each step is fed
-// the paper's input list and must give the paper's output list. Vertex v's y partner is v ^ 1,
-// so v >> 1 plays our level-0 item and v our corner.
+// The worked example of the paper's Section 2.4 (Fig. 4, expressions (2)-(13)), step by step:
+// each step is fed the paper's input list and must give the paper's output list. Vertex v's y
+// partner is v ^ 1, so v >> 1 plays our level-0 item and v our corner. The whole pipeline on
+// boxes drawn from these lists is test_paper_example_pipeline.cpp.
 
 #include <gtest/gtest.h>
 
@@ -16,32 +16,12 @@
 #include "paper/mask_array.hpp"
 #include "paper/shell_sort.hpp"
 #include "paper/singular_regroup.hpp"
+#include "paper_example_lists.hpp"
 
 namespace smb::detail {
 namespace {
 
-// (2): Y1 sorted and cut into slabs I and II of 24 vertices.
-const std::vector<Item> kY1 = {18, 19, 10, 11, 16, 17, 2,  3,  8,  9,  0,  1,  42, 43, 38, 39,
-                               30, 31, 40, 41, 36, 37, 28, 29, 22, 23, 34, 35, 32, 33, 14, 15,
-                               20, 21, 12, 13, 6,  7,  46, 47, 26, 27, 4,  5,  24, 25, 44, 45};
-// (3): X12 as the previous step left it.
-const std::vector<Item> kX12Previous = {36, 39, 16, 19, 37, 38, 17, 18, 31, 40, 43, 30, 23, 8,  11, 41,
-                                        42, 0,  3,  22, 9,  10, 1,  2,  4,  7,  24, 27, 12, 15, 5,  6,
-                                        13, 14, 25, 26, 28, 20, 29, 32, 35, 44, 47, 21, 45, 46, 33, 34};
-// (7): X12 after the singular items 23, 22 (to slab II) and 28, 29 (to slab I) moved.
-const std::vector<Item> kX12Regrouped = {36, 39, 16, 19, 37, 38, 17, 18, 31, 40, 43, 30, 28, 8,  11, 41,
-                                         42, 0,  3,  29, 9,  10, 1,  2,  4,  7,  24, 27, 12, 15, 5,  6,
-                                         13, 14, 25, 26, 23, 20, 22, 32, 35, 44, 47, 21, 45, 46, 33, 34};
-// (8) = (9): each slab of X12 sorted by DIS, then cut into sub-lists 1-4 of 12.
-const std::vector<Item> kX12Sorted = {36, 39, 37, 38, 16, 19, 17, 18, 28, 31, 40, 43, 29, 30, 41, 42,
-                                      8,  11, 0,  3,  9,  10, 1,  2,  4,  7,  24, 27, 5,  6,  12, 15,
-                                      13, 14, 25, 26, 20, 23, 32, 35, 44, 47, 21, 22, 45, 46, 33, 34};
-// (10): Y2, Y1 regrouped by sub-list.
-const std::vector<Item> kY2 = {18, 19, 16, 17, 43, 38, 39, 31, 40, 36, 37, 28, 10, 11, 2,  3,
-                               8,  9,  0,  1,  42, 30, 41, 29, 14, 15, 12, 13, 6,  7,  26, 27,
-                               4,  5,  24, 25, 22, 23, 34, 35, 32, 33, 20, 21, 46, 47, 44, 45};
-
-constexpr std::size_t kVertices = 48;
+using namespace paper_example;
 
 /// Keys that make (8) the sorted order: a vertex's key is its rank in (8).
 std::vector<double> keys_of_sorted_x12() {
@@ -78,9 +58,9 @@ TEST(PaperExample, RegroupingMovesExactlyTheSingularItems) {
     const auto previous = entries(kX12Previous, key);
     const std::vector<std::uint32_t> old_sections{0, 24, 48};
     const std::vector<std::uint32_t> new_sections{0, 24, 48};
-    std::vector<AxisEntry<double>> regrouped;
+    std::vector<AxisEntry<double>> regrouped = previous;
     RegroupScratch<double> scratch;
-    regroup_by_parent_segment<double>(previous, old_sections, {}, slab_of_pair(), new_sections, regrouped, scratch);
+    regroup_by_parent_segment<double>(regrouped, old_sections, {}, slab_of_pair(), new_sections, scratch);
     const auto got = items(regrouped);
     EXPECT_EQ(as_set(got, 0, 24), as_set(kX12Regrouped, 0, 24));
     EXPECT_EQ(as_set(got, 24, 48), as_set(kX12Regrouped, 24, 48));
@@ -109,10 +89,7 @@ TEST(PaperExample, DisThenCutGivesTheFourSubLists) {
                             sub_list_of, begin);
     }
     EXPECT_EQ(begin, (std::vector<std::uint32_t>{0, 12, 24, 36}));
-    // (11): the index array of sub-lists, numbered from 1 in the paper.
-    const std::vector<SegmentId> paper_index = {2, 2, 2, 2, 3, 3, 3, 3, 2, 2, 2, 2, 3, 3, 3, 3, 1, 1, 1, 1, 4, 4, 4, 4,
-                                                3, 3, 3, 3, 1, 2, 2, 1, 4, 4, 4, 4, 1, 1, 1, 1, 1, 2, 2, 1, 4, 4, 4, 4};
-    for (std::size_t v = 0; v < kVertices; ++v) EXPECT_EQ(sub_list_of[v] + 1, paper_index[v]) << "vertex " << v;
+    for (std::size_t v = 0; v < kVertices; ++v) EXPECT_EQ(sub_list_of[v] + 1, kSubListIndex[v]) << "vertex " << v;
 }
 
 TEST(PaperExample, Y1RegroupedByCellIsY2) {

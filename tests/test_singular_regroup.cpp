@@ -39,9 +39,9 @@ TEST(SingularRegroup, RandomSectionsAndArrivals) {
         for (const auto& e : arrivals) ++counts[parent_segment[e.item >> 1] + 1];
         for (std::size_t j = 0; j < new_sections; ++j) counts[j + 1] += counts[j];
 
-        std::vector<AxisEntry<double>> out;
+        std::vector<AxisEntry<double>> out = list;
         RegroupScratch<double> scratch;
-        regroup_by_parent_segment<double>(list, old_begin, arrivals, parent_segment, counts, out, scratch);
+        regroup_by_parent_segment<double>(out, old_begin, arrivals, parent_segment, counts, scratch);
 
         ASSERT_EQ(out.size(), list.size() + arrivals.size()) << "seed " << seed;
         for (std::size_t j = 0; j < new_sections; ++j) {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // An item of a persistent SMB list: the id of a projection (the paper's vertex numbers) with
-// its coordinate kept beside it, so that sorting compares contiguous keys instead of chasing
-// ids into the box array.
+// its coordinate kept beside it (refreshed from the boxes once per step), so that sorting
+// compares contiguous keys instead of chasing ids into the box array.
 
 #include <concepts>
 #include <cstdint>
@@ -14,11 +14,16 @@ namespace smb::detail {
 /// above. The deepest level's items are the paper's box corners.
 using Item = std::uint32_t;
 
+// Packed to 4-byte alignment: with double keys an entry is 12 bytes instead of 16, a quarter of
+// the lists' memory; x86 and ARMv8 load an unaligned double at the speed of an aligned one.
+#pragma pack(push, 4)
 template <std::floating_point Real>
 struct AxisEntry {
     Real key;
     Item item;
 };
+#pragma pack(pop)
+static_assert(sizeof(AxisEntry<double>) == 12 && sizeof(AxisEntry<float>) == 8);
 
 /// Total order of a list: by coordinate; at equal coordinates a min end before a max end, so
 /// that touching intervals (closed convention) are seen as overlapping by every sweep and no

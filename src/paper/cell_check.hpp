@@ -58,6 +58,10 @@ public:
         }
     }
 
+    /// The m x m flag matrix of the last cell checked with it (row a, column b > a), as the
+    /// paper's example draws it.
+    [[nodiscard]] std::span<const std::uint8_t> flag_matrix() const noexcept { return flags_; }
+
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return flags_.capacity() + open_.capacity() + present_min_.capacity() +
                (active_.capacity() + position_.capacity()) * sizeof(std::uint32_t);

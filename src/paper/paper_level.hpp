@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // One level of the paper's cut: its persistent list (Y1, X12 in 2D; Z1, Y12, X123 in 3D), sorted
-// by DIS within each section, and the per-step arrays derived from it: the axial cut of every
-// section into segments, and the index array that gives every item its segment.
+// by DIS within each section, and the axial cut of every section into segments. The index array
+// that gives every item its segment is a per-step array that all levels share (the pipeline's):
+// a level's is read only by the next level's regrouping, before that level is cut.
 
 #include <cstddef>
 #include <cstdint>
@@ -24,7 +25,6 @@ struct PaperLevel {
     std::vector<Entry> list;                   // grouped by section, sorted within each
     std::vector<std::uint32_t> section_begin;  // offsets of the sections in `list`
     std::vector<std::uint32_t> segment_begin;  // offsets of the segments (after the cut)
-    std::vector<SegmentId> segment_of;         // index array: segment of every item id
     DisController dis;
 
     /// Renumbers the items after BoxStore::compact() dropped removed slots, keeping the list's
@@ -58,8 +58,9 @@ struct PaperLevel {
         return work;
     }
 
-    /// The axial cut: every section into `cuts` segments of (nearly) equal length.
-    void cut(SegmentId cuts) {
+    /// The axial cut: every section into `cuts` segments of (nearly) equal length; `segment_of`
+    /// (the index array, by item id) is filled for this level's items.
+    void cut(SegmentId cuts, std::vector<SegmentId>& segment_of) {
         segment_of.resize(list.size());
         segment_begin.clear();
         const std::size_t sections = section_begin.size() - 1;
@@ -74,8 +75,7 @@ struct PaperLevel {
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return list.capacity() * sizeof(Entry) +
-               (section_begin.capacity() + segment_begin.capacity()) * sizeof(std::uint32_t) +
-               segment_of.capacity() * sizeof(SegmentId);
+               (section_begin.capacity() + segment_begin.capacity()) * sizeof(std::uint32_t);
     }
 };
 

@@ -8,6 +8,7 @@
 // y then x in 3D), grouped by the segments of level l-1. docs/algorithm.md maps every step of
 // the paper to the functions below.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -33,6 +34,37 @@
 
 namespace smb::detail {
 
+/// Grows `list` to hold `length` items with a sixteenth to spare, and gives back what is more
+/// than a quarter above it: vectors that double would hold up to twice the lists' bytes, and
+/// more after N has shrunk.
+template <class Vector>
+void fit_capacity(Vector& list, std::size_t length) {
+    if (length > list.capacity()) {
+        list.reserve(length + length / 16);
+    } else if (list.capacity() > length + length / 4 && list.capacity() > 4096) {
+        Vector smaller;
+        smaller.reserve(std::max(length, list.size()) + length / 16);
+        smaller.assign(list.begin(), list.end());
+        list.swap(smaller);
+    }
+}
+
+/// Merges the sorted `arrivals` into the sorted `list` in place, from the back.
+template <class Entry>
+void merge_from_back(std::vector<Entry>& list, const std::vector<Entry>& arrivals) {
+    std::size_t kept = list.size();
+    std::size_t arrived = arrivals.size();
+    list.resize(kept + arrived);
+    std::size_t out = list.size();
+    while (arrived > 0) {
+        if (kept > 0 && entry_less(arrivals[arrived - 1], list[kept - 1])) {
+            list[--out] = list[--kept];
+        } else {
+            list[--out] = arrivals[--arrived];
+        }
+    }
+}
+
 template <std::floating_point Real, int Dim>
 class PaperPipeline {
 public:
@@ -51,17 +83,27 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept;
 
-private:
     using Entry = AxisEntry<Real>;
-
     using Level = PaperLevel<Real>;  // the paper's Y1, X12 in 2D; Z1, Y12, X123 in 3D
 
+    // Read-only views of the lists as the last detection left them, so that a test can hold
+    // them against the paper's worked example.
+    [[nodiscard]] const Level& level(int depth) const noexcept { return levels_[static_cast<std::size_t>(depth)]; }
+    [[nodiscard]] std::span<const Item> cell_list(int depth) const noexcept {
+        return cell_lists_[static_cast<std::size_t>(depth)];
+    }
+    [[nodiscard]] const std::vector<std::uint8_t>& oversized() const noexcept { return oversized_; }
+    /// The index array of the deepest cut: the cell of every corner.
+    [[nodiscard]] std::span<const SegmentId> cell_of() const noexcept { return segment_of_; }
+    [[nodiscard]] SegmentId cuts() const noexcept { return cuts_; }
+
+private:
     static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
 
     void choose_cuts();
     void refresh_keys(Level& level, int depth);
     void collect_arrivals(int depth);
-    void find_oversized();
+    void mark_oversized(int depth);
     void release_oversized_scratch();
     void build_cell_lists();
     template <class Report>
@@ -75,7 +117,8 @@ private:
     std::array<std::vector<Item>, Dim - 1> cell_lists_;  // the paper's Y2 (2D); Y2, Z2 (3D)
     std::vector<std::uint32_t> cell_cursor_;
     std::vector<Entry> arrivals_;
-    std::vector<Entry> spare_;  // second buffer of the regrouping, shared by the levels
+    std::vector<SegmentId> segment_of_;           // index array of the level cut last
+    std::vector<std::uint32_t> section_scratch_;  // the regrouped sections' offsets
     std::vector<std::uint8_t> oversized_;
     std::size_t oversized_count_ = 0;
     RegroupScratch<Real> regroup_;
@@ -94,32 +137,34 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
     const std::size_t n = store_->slot_count();
     if (n > 0) {
         choose_cuts();
+        fit_capacity(segment_of_, n << Dim);  // the deepest level's length: the longest
         Stopwatch phase;
         double sorting = 0;
         for (int depth = 0; depth < Dim; ++depth) {
             Level& level = levels_[depth];
             refresh_keys(level, depth);
             collect_arrivals(depth);
+            const std::size_t length = n << (depth + 1);
+            fit_capacity(level.list, length);
             if (depth == 0) {
                 // Step 1 of Section 3: the first list is one section; arrivals are merged in
                 // sorted, then DIS restores the order that the motion disturbed.
                 if (!arrivals_.empty()) {
                     std::sort(arrivals_.begin(), arrivals_.end(), EntryLess{});
-                    spare_.resize(level.list.size() + arrivals_.size());
-                    std::merge(level.list.begin(), level.list.end(), arrivals_.begin(), arrivals_.end(), spare_.begin(),
-                               EntryLess{});
-                    level.list.swap(spare_);
+                    merge_from_back(level.list, arrivals_);
                 }
                 level.section_begin.assign({0U, static_cast<std::uint32_t>(level.list.size())});
             } else {
-                // Steps 4-7 of Section 3: regroup by the parent level's cut.
+                // Steps 4-7 of Section 3: regroup by the parent level's cut, whose index array
+                // segment_of_ still holds.
                 const Level& parent = levels_[depth - 1];
-                std::vector<std::uint32_t> new_begin(parent.segment_begin.size());
-                for (std::size_t j = 0; j < new_begin.size(); ++j) new_begin[j] = 2 * parent.segment_begin[j];
-                regroup_by_parent_segment<Real>(level.list, level.section_begin, arrivals_, parent.segment_of,
-                                                new_begin, spare_, regroup_);
-                level.list.swap(spare_);
-                level.section_begin.swap(new_begin);
+                section_scratch_.resize(parent.segment_begin.size());
+                for (std::size_t j = 0; j < section_scratch_.size(); ++j) {
+                    section_scratch_[j] = 2 * parent.segment_begin[j];
+                }
+                regroup_by_parent_segment<Real>(level.list, level.section_begin, arrivals_, segment_of_,
+                                                section_scratch_, regroup_);
+                level.section_begin.swap(section_scratch_);
             }
             SMB_ASSERT(level.list.size() == (n << (depth + 1)), "a list lost or gained items");
             const Stopwatch sort_watch;
@@ -127,11 +172,13 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
             sorting += sort_watch.seconds();
             level.dis.learn(work);
             stats.sort_moves += work.moves();
-            level.cut(cuts_);
+            level.cut(cuts_, segment_of_);
+            if (depth == 0) oversized_.assign(n, 0);
+            mark_oversized(depth);
         }
         listed_ = n;
         release_oversized_scratch();
-        find_oversized();
+        oversized_count_ = static_cast<std::size_t>(std::count(oversized_.begin(), oversized_.end(), 1));
         build_cell_lists();
         stats.list_sort_seconds = sorting;
         stats.cut_regroup_seconds = phase.lap() - sorting;
@@ -224,28 +271,20 @@ void PaperPipeline<Real, Dim>::release_oversized_scratch() {
 }
 
 /// A box is oversized when, on some level and for some of its faces, its min and max fall more
-/// than one segment apart: the segment between would not hold it (the paper's Fig. 5).
+/// than one segment apart: the segment between would not hold it (the paper's Fig. 5). Each
+/// level is judged right after its cut, while the index array holds its segments.
 template <std::floating_point Real, int Dim>
-void PaperPipeline<Real, Dim>::find_oversized() {
+void PaperPipeline<Real, Dim>::mark_oversized(int depth) {
     const std::size_t n = store_->slot_count();
-    oversized_.assign(n, 0);
-    oversized_count_ = 0;
     for (std::size_t slot = 0; slot < n; ++slot) {
-        bool spans_three = false;
-        for (int depth = 0; depth < Dim && !spans_three; ++depth) {
-            const auto& segment_of = levels_[depth].segment_of;
-            const Item first = static_cast<Item>(slot) << (depth + 1);
-            for (Item parent = 0; parent < (Item{1} << depth); ++parent) {
-                const Item min_item = first | (parent << 1);
-                if (segment_of[min_item | 1U] - segment_of[min_item] > 1) {
-                    spans_three = true;
-                    break;
-                }
+        if (oversized_[slot]) continue;
+        const Item first = static_cast<Item>(slot) << (depth + 1);
+        for (Item parent = 0; parent < (Item{1} << depth); ++parent) {
+            const Item min_item = first | (parent << 1);
+            if (segment_of_[min_item | 1U] - segment_of_[min_item] > 1) {
+                oversized_[slot] = 1;
+                break;
             }
-        }
-        if (spans_three) {
-            oversized_[slot] = 1;
-            ++oversized_count_;
         }
     }
 }
@@ -255,7 +294,8 @@ template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::build_cell_lists() {
     const Level& deepest = levels_[Dim - 1];
     for (int depth = 0; depth + 1 < Dim; ++depth) {
-        regroup_by_cell(ItemsOf<Real>(levels_[depth].list), Dim - 1 - depth, deepest.segment_of, deepest.segment_begin,
+        fit_capacity(cell_lists_[static_cast<std::size_t>(depth)], deepest.list.size());
+        regroup_by_cell(ItemsOf<Real>(levels_[depth].list), Dim - 1 - depth, segment_of_, deepest.segment_begin,
                         cell_lists_[static_cast<std::size_t>(depth)], cell_cursor_);
     }
 }
@@ -306,9 +346,17 @@ void PaperPipeline<Real, Dim>::check_cells(Report& report) {
 template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::check_invariants() const {
     const std::size_t n = store_->slot_count();
+    std::vector<SegmentId> parent_segment_of;
+    std::vector<SegmentId> segment_of;
     for (int depth = 0; depth < Dim; ++depth) {
         const Level& level = levels_[depth];
         const int shift = depth + 1;
+        segment_of.assign(level.list.size(), 0);
+        for (std::size_t s = 0; s + 1 < level.segment_begin.size(); ++s) {
+            for (std::uint32_t i = level.segment_begin[s]; i < level.segment_begin[s + 1]; ++i) {
+                segment_of[level.list[i].item] = static_cast<SegmentId>(s);
+            }
+        }
         SMB_ASSERT(level.list.size() == (n << shift), "list length");
         std::vector<std::uint8_t> seen(level.list.size(), 0);
         for (std::size_t j = 0; j + 1 < level.section_begin.size(); ++j) {
@@ -324,16 +372,13 @@ void PaperPipeline<Real, Dim>::check_invariants() const {
                     SMB_ASSERT(!entry_less(entry, level.list[i - 1]), "section is sorted");
                 }
                 if (depth > 0) {
-                    SMB_ASSERT(levels_[depth - 1].segment_of[entry.item >> 1] == j, "item is in its parent's section");
+                    SMB_ASSERT(parent_segment_of[entry.item >> 1] == j, "item is in its parent's section");
                 }
             }
         }
-        for (std::size_t s = 0; s + 1 < level.segment_begin.size(); ++s) {
-            for (std::uint32_t i = level.segment_begin[s]; i < level.segment_begin[s + 1]; ++i) {
-                SMB_ASSERT(level.segment_of[level.list[i].item] == s, "index array agrees with the cut");
-            }
-        }
+        parent_segment_of.swap(segment_of);
     }
+    SMB_ASSERT(parent_segment_of == segment_of_, "index array agrees with the deepest cut");
 }
 
 template <std::floating_point Real, int Dim>
@@ -342,7 +387,8 @@ std::size_t PaperPipeline<Real, Dim>::bytes_held() const noexcept {
     for (const Level& level : levels_) bytes += level.bytes_held();
     for (const auto& cell_list : cell_lists_) bytes += cell_list.capacity() * sizeof(Item);
     bytes += cell_cursor_.capacity() * sizeof(std::uint32_t);
-    bytes += (arrivals_.capacity() + spare_.capacity()) * sizeof(Entry);
+    bytes += arrivals_.capacity() * sizeof(Entry) + segment_of_.capacity() * sizeof(SegmentId);
+    bytes += section_scratch_.capacity() * sizeof(std::uint32_t);
     bytes += oversized_.capacity() + regroup_.bytes_held() + mask_.bytes_held() + map_.bytes_held();
     bytes += checker_.bytes_held() + oversized_sweep_.bytes_held();
     return bytes;

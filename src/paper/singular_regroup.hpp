@@ -7,10 +7,13 @@
 //
 // The paper swaps singular items through holes in place, which works when every section keeps
 // its length. Our cuts move to value changes and N changes between steps, so section lengths
-// vary; we therefore write the regrouped list into a second buffer: normal items in their old
-// order, merged with the singular items that arrive in the section (sorted among themselves),
-// so that arrivals land near their final place instead of at a hole. Still one linear pass
-// plus a sort of the singular items only.
+// vary. The regrouping is in place all the same, in two linear passes: the first packs the normal
+// items to the front, section by section, and sets the singular items aside; since a section's
+// normal items can only have been preceded by fewer items than will precede it, each packed
+// section lies at or before its new place, and the second pass, from the last section back,
+// merges each section's normal items with the singular items that arrive in it (sorted among
+// themselves), so that they land near their final place instead of at a hole. Only the singular
+// items are ever copied out of the list.
 
 #include <algorithm>
 #include <cstddef>
@@ -18,94 +21,95 @@
 #include <span>
 #include <vector>
 
+#include "core/assert.hpp"
 #include "paper/axial_cut.hpp"
 #include "paper/axis_entry.hpp"
 
 namespace smb::detail {
 
+/// A singular item set aside, with the section it moves to: the paper's stack array, one stack
+/// per destination section once sorted.
+template <std::floating_point Real>
+struct SingularItem {
+    SegmentId section;
+    AxisEntry<Real> entry;
+};
+
 /// Scratch arrays of the regrouping, kept between steps so that steady-state steps allocate
-/// nothing: the paper's stack array (one stack per destination section) and its pointers.
+/// nothing.
 template <std::floating_point Real>
 struct RegroupScratch {
-    std::vector<AxisEntry<Real>> singular;    // singular items in arrival order
-    std::vector<SegmentId> singular_section;  // their destination sections
-    std::vector<AxisEntry<Real>> stacks;      // the stack array, grouped by section
-    std::vector<std::uint32_t> stack_begin;   // stack pointers
+    std::vector<SingularItem<Real>> singular;  // grouped by destination section once sorted
+    std::vector<std::uint32_t> packed_end;     // end of each old section's packed normal items
 
     template <class Trim>
     void trim(Trim&& trim_buffer) {
         trim_buffer(singular);
-        trim_buffer(singular_section);
-        trim_buffer(stacks);
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return singular.capacity() * sizeof(AxisEntry<Real>) + singular_section.capacity() * sizeof(SegmentId) +
-               stacks.capacity() * sizeof(AxisEntry<Real>) + stack_begin.capacity() * sizeof(std::uint32_t);
+        return singular.capacity() * sizeof(SingularItem<Real>) + packed_end.capacity() * sizeof(std::uint32_t);
     }
 };
 
-/// Regroups `list` (grouped by `old_section_begin`) plus `arrivals` (items new to the list) by
-/// the section of each item's parent, `parent_segment[item >> 1]`. `new_section_begin` (size
-/// sections + 1) gives the regrouped offsets. The result goes to `out`.
+/// Regroups `list` (grouped by `old_section_begin`) plus `arrivals` (items new to the list), in
+/// place, by the section of each item's parent, `parent_segment[item >> 1]`.
+/// `new_section_begin` (size sections + 1) gives the regrouped offsets; `list` ends that long.
 template <std::floating_point Real>
-void regroup_by_parent_segment(std::span<const AxisEntry<Real>> list, std::span<const std::uint32_t> old_section_begin,
+void regroup_by_parent_segment(std::vector<AxisEntry<Real>>& list, std::span<const std::uint32_t> old_section_begin,
                                std::span<const AxisEntry<Real>> arrivals, std::span<const SegmentId> parent_segment,
-                               std::span<const std::uint32_t> new_section_begin, std::vector<AxisEntry<Real>>& out,
-                               RegroupScratch<Real>& scratch) {
+                               std::span<const std::uint32_t> new_section_begin, RegroupScratch<Real>& scratch) {
     const std::size_t new_sections = new_section_begin.size() - 1;
     const std::size_t old_sections = old_section_begin.empty() ? 0 : old_section_begin.size() - 1;
     auto& singular = scratch.singular;
-    auto& destination = scratch.singular_section;
+    auto& packed_end = scratch.packed_end;
     singular.clear();
-    destination.clear();
+    packed_end.assign(new_sections, 0);
 
-    // Push: every item whose section changed, and every arrival, onto its destination's stack.
+    // Pack the normal items to the front; set aside every item whose section changed.
+    std::size_t write = 0;
     for (std::size_t j = 0; j < old_sections; ++j) {
         for (std::uint32_t i = old_section_begin[j]; i < old_section_begin[j + 1]; ++i) {
-            const SegmentId section = parent_segment[list[i].item >> 1];
-            if (section != j) {
-                singular.push_back(list[i]);
-                destination.push_back(section);
+            const AxisEntry<Real> entry = list[i];
+            const SegmentId section = parent_segment[entry.item >> 1];
+            if (section == j) {
+                list[write++] = entry;
+            } else {
+                singular.push_back({section, entry});
             }
         }
+        if (j < new_sections) packed_end[j] = static_cast<std::uint32_t>(write);
     }
-    for (const auto& entry : arrivals) {
-        singular.push_back(entry);
-        destination.push_back(parent_segment[entry.item >> 1]);
+    for (std::size_t j = std::min(old_sections, new_sections); j < new_sections; ++j) {
+        packed_end[j] = static_cast<std::uint32_t>(write);
     }
-    auto& stack_begin = scratch.stack_begin;
-    stack_begin.assign(new_sections + 1, 0);
-    for (const SegmentId section : destination) ++stack_begin[section + 1];
-    for (std::size_t j = 0; j < new_sections; ++j) stack_begin[j + 1] += stack_begin[j];
-    auto& stacks = scratch.stacks;
-    stacks.resize(singular.size());
-    {
-        std::vector<std::uint32_t>& top = scratch.stack_begin;  // reused as cursors, restored below
-        for (std::size_t s = 0; s < singular.size(); ++s) stacks[top[destination[s]]++] = singular[s];
-        for (std::size_t j = new_sections; j > 0; --j) top[j] = top[j - 1];
-        top[0] = 0;
-    }
+    for (const auto& entry : arrivals) singular.push_back({parent_segment[entry.item >> 1], entry});
+    std::sort(singular.begin(), singular.end(), [](const SingularItem<Real>& a, const SingularItem<Real>& b) {
+        if (a.section != b.section) return a.section < b.section;
+        return entry_less(a.entry, b.entry);
+    });
 
-    // Pop: each section is its normal items, in their old order, merged with its arrivals.
-    out.resize(new_section_begin[new_sections]);
-    for (std::size_t j = 0; j < new_sections; ++j) {
-        auto arrived_first = stacks.begin() + stack_begin[j];
-        auto arrived_last = stacks.begin() + stack_begin[j + 1];
-        std::sort(arrived_first, arrived_last, EntryLess{});
-        std::size_t write = new_section_begin[j];
-        if (j < old_sections) {
-            for (std::uint32_t i = old_section_begin[j]; i < old_section_begin[j + 1]; ++i) {
-                const auto& entry = list[i];
-                if (parent_segment[entry.item >> 1] != j) continue;
-                while (arrived_first != arrived_last && entry_less(*arrived_first, entry)) {
-                    out[write++] = *arrived_first++;
-                }
-                out[write++] = entry;
+    // Merge from the back: every write lands at or after the packed items not yet read.
+    list.resize(new_section_begin[new_sections]);
+    auto arrived = singular.end();
+    for (std::size_t j = new_sections; j-- > 0;) {
+        const std::size_t normal_first = j == 0 ? 0 : packed_end[j - 1];
+        std::size_t normal_end = packed_end[j];
+        std::size_t out = new_section_begin[j + 1];
+        while (arrived != singular.begin() && (arrived - 1)->section == j) {
+            const AxisEntry<Real>& last_arrival = (arrived - 1)->entry;
+            if (normal_end > normal_first && entry_less(last_arrival, list[normal_end - 1])) {
+                list[--out] = list[--normal_end];
+            } else {
+                list[--out] = last_arrival;
+                --arrived;
             }
         }
-        while (arrived_first != arrived_last) out[write++] = *arrived_first++;
+        SMB_ASSERT(out - normal_end == new_section_begin[j] - normal_first, "a section's count changed");
+        if (out != normal_end)
+            std::move_backward(list.begin() + normal_first, list.begin() + normal_end, list.begin() + out);
     }
+    SMB_ASSERT(arrived == singular.begin(), "a singular item found no section");
 }
 
 }  // namespace smb::detail
