@@ -92,6 +92,7 @@ PileMeasure PileScene::measure() const {
         measure.kinetic_energy +=
             0.5 * body.getLinearVelocity().length2() / body.getInvMass() + 0.5 * (spin * spin).dot(inertia);
         ++moving;
+        if (body.isActive()) ++measure.awake;
     }
     if (moving > 0) measure.mean_height /= static_cast<double>(moving);
     const int manifolds = dispatcher_.getNumManifolds();

@@ -33,6 +33,7 @@ struct PileMeasure {
     std::size_t contacts = 0;  ///< contact points in every manifold
     std::size_t manifolds = 0;
     double kinetic_energy = 0;  ///< translational and rotational, of the dynamic bodies
+    std::size_t awake = 0;      ///< dynamic bodies Bullet has not put to sleep
 };
 
 class PileScene {
