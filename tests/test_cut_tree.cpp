@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -71,6 +72,41 @@ TEST(CutTree, EqualKeysShareASegment) {
             EXPECT_EQ(segment_of(planes, key), of_three);
         }
     }
+}
+
+TEST(CutTree, PlanesStayATypicalExtentApartSoThatALayerOfBoxesIsNotOversized) {
+    // 2000 unit boxes in a layer four boxes deep, cut into 16 segments: equal counts alone put
+    // the planes a quarter box apart, so nearly every box would span more than two segments.
+    CutTree<float, 2> tree;
+    tree.reshape(16);
+    std::mt19937_64 random(11);
+    std::uniform_real_distribution<float> low(0.0F, 3.0F);
+    std::vector<float> mins(2000);
+    for (float& min : mins) min = low(random);
+    QuantileSelector<float> scratch;
+    tree.cut_group(
+        1, 0, mins.size(), [&](std::size_t i) { return mins[i]; }, [](std::size_t) { return 1.0F; }, scratch);
+    const std::span<const float> planes = tree.cuts(1, 0);
+    ASSERT_TRUE(std::is_sorted(planes.begin(), planes.end()));
+    std::size_t finite = 0;
+    for (std::size_t j = 0; j < planes.size(); ++j) {
+        if (!std::isfinite(planes[j])) {
+            EXPECT_EQ(planes[j], std::numeric_limits<float>::infinity());
+            continue;
+        }
+        ++finite;
+        if (j > 0) EXPECT_GE(planes[j] - planes[j - 1], 1.0F);
+    }
+    EXPECT_GE(finite, 2U);
+    EXPECT_LE(finite, 3U);
+    for (const float min : mins) {
+        const std::uint32_t lo = segment_of(planes, min);
+        EXPECT_LE(segment_of_max(planes, min + 1.0F, lo) - lo, 1U) << "min " << min;
+    }
+    // Without extents (or with boxes small against the segments) the planes are the quantiles.
+    tree.cut_group(
+        1, 0, mins.size(), [&](std::size_t i) { return mins[i]; }, scratch);
+    EXPECT_TRUE(std::all_of(planes.begin(), planes.end(), [](float plane) { return std::isfinite(plane); }));
 }
 
 TEST(CutTree, SegmentNearAgreesWithSegmentOf) {

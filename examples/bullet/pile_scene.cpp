@@ -29,15 +29,15 @@ PileScene::PileScene(btBroadphaseInterface& broadphase, const PileSettings& sett
     floor_shape_ = std::make_unique<btBoxShape>(btVector3(half_width_ + 1, 1, half_width_ + 1));
     wall_shape_x_ = std::make_unique<btBoxShape>(btVector3(0.5f, 8, half_width_ + 1));
     wall_shape_z_ = std::make_unique<btBoxShape>(btVector3(half_width_ + 1, 8, 0.5f));
-    add_body(*floor_shape_, 0, btVector3(0, -1, 0));
-    add_body(*wall_shape_x_, 0, btVector3(-half_width_ - 0.5f, 8, 0));
-    add_body(*wall_shape_x_, 0, btVector3(half_width_ + 0.5f, 8, 0));
-    add_body(*wall_shape_z_, 0, btVector3(0, 8, -half_width_ - 0.5f));
-    add_body(*wall_shape_z_, 0, btVector3(0, 8, half_width_ + 0.5f));
-    plough_ = &add_body(plough_shape_, 0, btVector3(-half_width_ + 1.5f, 2, 0));
+    owned_.add(world_, *floor_shape_, 0, btVector3(0, -1, 0));
+    owned_.add(world_, *wall_shape_x_, 0, btVector3(-half_width_ - 0.5f, 8, 0));
+    owned_.add(world_, *wall_shape_x_, 0, btVector3(half_width_ + 0.5f, 8, 0));
+    owned_.add(world_, *wall_shape_z_, 0, btVector3(0, 8, -half_width_ - 0.5f));
+    owned_.add(world_, *wall_shape_z_, 0, btVector3(0, 8, half_width_ + 0.5f));
+    plough_ = &owned_.add(world_, plough_shape_, 0, btVector3(-half_width_ + 1.5f, 2, 0));
     plough_->setCollisionFlags(plough_->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
     plough_->setActivationState(DISABLE_DEACTIVATION);
-    fixed_bodies_ = bodies_.size();
+    fixed_bodies_ = owned_.bodies.size();
 
     std::uniform_real_distribution<float> jitter(-0.05f, 0.05f);
     for (std::size_t i = 0; i < settings.bodies; ++i) {
@@ -50,32 +50,12 @@ PileScene::PileScene(btBroadphaseInterface& broadphase, const PileSettings& sett
     }
 }
 
-PileScene::~PileScene() {
-    for (auto& body : bodies_) world_.removeRigidBody(body.get());
-}
-
-btRigidBody& PileScene::add_body(btCollisionShape& shape, float mass, const btVector3& origin) {
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) shape.calculateLocalInertia(mass, inertia);
-    motions_.push_back(std::make_unique<btDefaultMotionState>(btTransform(btQuaternion::getIdentity(), origin)));
-    bodies_.push_back(std::make_unique<btRigidBody>(
-        btRigidBody::btRigidBodyConstructionInfo(mass, motions_.back().get(), &shape, inertia)));
-    world_.addRigidBody(bodies_.back().get());
-    return *bodies_.back();
-}
+PileScene::~PileScene() { owned_.remove_all(world_); }
 
 void PileScene::drop_body(const btVector3& origin) {
     // Two boxes for every sphere.
-    const bool sphere = bodies_.size() % 3 == 0;
-    add_body(sphere ? static_cast<btCollisionShape&>(sphere_shape_) : box_shape_, 1.0f, origin);
-}
-
-void PileScene::remove_body(std::size_t index) {
-    world_.removeRigidBody(bodies_[index].get());
-    bodies_[index] = std::move(bodies_.back());
-    bodies_.pop_back();
-    motions_[index] = std::move(motions_.back());
-    motions_.pop_back();
+    const bool sphere = owned_.bodies.size() % 3 == 0;
+    owned_.add(world_, sphere ? static_cast<btCollisionShape&>(sphere_shape_) : box_shape_, 1.0f, origin);
 }
 
 void PileScene::step() {
@@ -89,9 +69,9 @@ void PileScene::step() {
     }
     if (settings_.churn_every > 0 && steps_ > 0 && steps_ % settings_.churn_every == 0) {
         std::uniform_real_distribution<float> across(-half_width_ + 1, half_width_ - 1);
-        for (std::size_t i = 0; i < settings_.churn && bodies_.size() > fixed_bodies_; ++i) {
-            std::uniform_int_distribution<std::size_t> pick(fixed_bodies_, bodies_.size() - 1);
-            remove_body(pick(random_));
+        for (std::size_t i = 0; i < settings_.churn && owned_.bodies.size() > fixed_bodies_; ++i) {
+            std::uniform_int_distribution<std::size_t> pick(fixed_bodies_, owned_.bodies.size() - 1);
+            owned_.remove(world_, pick(random_));
         }
         for (std::size_t i = 0; i < settings_.churn; ++i) {
             drop_body(btVector3(across(random_), 14.0f + static_cast<float>(i % 4) * spacing, across(random_)));
@@ -104,14 +84,15 @@ void PileScene::step() {
 PileMeasure PileScene::measure() const {
     PileMeasure measure;
     std::size_t moving = 0;
-    for (std::size_t i = fixed_bodies_; i < bodies_.size(); ++i) {
-        const btRigidBody& body = *bodies_[i];
+    for (std::size_t i = fixed_bodies_; i < owned_.bodies.size(); ++i) {
+        const btRigidBody& body = *owned_.bodies[i];
         measure.mean_height += body.getCenterOfMassPosition().y();
         const btVector3 spin = body.getAngularVelocity();
         const btVector3 inertia = body.getLocalInertia();
         measure.kinetic_energy +=
             0.5 * body.getLinearVelocity().length2() / body.getInvMass() + 0.5 * (spin * spin).dot(inertia);
         ++moving;
+        if (body.isActive()) ++measure.awake;
     }
     if (moving > 0) measure.mean_height /= static_cast<double>(moving);
     const int manifolds = dispatcher_.getNumManifolds();

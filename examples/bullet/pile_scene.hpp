@@ -12,6 +12,8 @@
 #include <random>
 #include <vector>
 
+#include "owned_bodies.hpp"
+
 namespace smb::examples {
 
 struct PileSettings {
@@ -31,6 +33,7 @@ struct PileMeasure {
     std::size_t contacts = 0;  ///< contact points in every manifold
     std::size_t manifolds = 0;
     double kinetic_energy = 0;  ///< translational and rotational, of the dynamic bodies
+    std::size_t awake = 0;      ///< dynamic bodies Bullet has not put to sleep
 };
 
 class PileScene {
@@ -52,8 +55,6 @@ public:
     [[nodiscard]] float half_width() const { return half_width_; }
 
 private:
-    btRigidBody& add_body(btCollisionShape& shape, float mass, const btVector3& origin);
-    void remove_body(std::size_t index);
     void drop_body(const btVector3& origin);
 
     PileSettings settings_;
@@ -67,8 +68,7 @@ private:
     std::unique_ptr<btBoxShape> wall_shape_x_;
     std::unique_ptr<btBoxShape> wall_shape_z_;
     btBoxShape plough_shape_;
-    std::vector<std::unique_ptr<btDefaultMotionState>> motions_;
-    std::vector<std::unique_ptr<btRigidBody>> bodies_;
+    OwnedBodies owned_;
     std::size_t fixed_bodies_ = 0;  ///< the first bodies: floor, walls, plough
     btRigidBody* plough_ = nullptr;
     float half_width_ = 0;

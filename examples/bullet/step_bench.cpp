@@ -77,6 +77,14 @@ public:
 
     double broad_ms = 0;
 
+    /// Boxes smb's last detection found oversized (spanning more than two segments on some
+    /// level, checked apart from the cells); empty for Bullet's broad phases.
+    [[nodiscard]] std::string oversized() const {
+        const auto* smb_broadphase = dynamic_cast<const smb::bullet::Broadphase*>(inner_.get());
+        return smb_broadphase == nullptr ? std::string()
+                                         : std::to_string(smb_broadphase->world().last_stats().oversized_boxes);
+    }
+
 private:
     std::unique_ptr<btBroadphaseInterface> inner_;
 };
@@ -112,11 +120,11 @@ void run(smb::examples::PileScene& scene, TimedBroadphase& timed, int steps, int
 }
 
 void print_row(const std::string& name, std::size_t bodies, const char* scene, const char* part, const Window& w,
-               const smb::examples::PileScene& pile) {
+               const smb::examples::PileScene& pile, const TimedBroadphase& timed) {
     const smb::examples::PileMeasure measure = pile.measure();
-    fmt::print("{},{},{},{},{},{:.3f},{:.3f},{},{:.3f}\n", name, bodies, scene, part, w.steps,
+    fmt::print("{},{},{},{},{},{:.3f},{:.3f},{},{:.3f},{},{}\n", name, bodies, scene, part, w.steps,
                w.steps > 0 ? w.step_ms / w.steps : 0.0, w.steps > 0 ? w.broad_ms / w.steps : 0.0, measure.manifolds,
-               measure.mean_height);
+               measure.mean_height, measure.awake, timed.oversized());
 }
 
 }  // namespace
@@ -138,7 +146,7 @@ int main(int argc, char** argv) {
     app.add_option("--broadphase", names, "any of smb, dbvt, sap")->delimiter(',');
     CLI11_PARSE(app, argc, argv);
 
-    fmt::print("broadphase,bodies,scene,part,steps,step_ms,broadphase_ms,manifolds,mean_height\n");
+    fmt::print("broadphase,bodies,scene,part,steps,step_ms,broadphase_ms,manifolds,mean_height,awake,oversized\n");
     for (const std::string& name : names) {
         {
             smb::examples::PileSettings settings;
@@ -148,8 +156,8 @@ int main(int argc, char** argv) {
             Window head;
             Window tail;
             run(scene, timed, motion_steps, first, head, tail);
-            print_row(name, bodies, "avalanche", "first", head, scene);
-            print_row(name, bodies, "avalanche", "steady", tail, scene);
+            print_row(name, bodies, "avalanche", "first", head, scene, timed);
+            print_row(name, bodies, "avalanche", "steady", tail, scene, timed);
         }
         if (rest_steps > 0) {
             smb::examples::PileSettings settings;
@@ -164,7 +172,7 @@ int main(int argc, char** argv) {
             Window head;
             Window tail;
             run(scene, timed, rest_steps, 0, head, tail);
-            print_row(name, bodies, "rest", "steady", tail, scene);
+            print_row(name, bodies, "rest", "steady", tail, scene, timed);
         }
         std::fflush(stdout);
     }

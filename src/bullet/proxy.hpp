@@ -3,6 +3,7 @@
 // What the broad phase keeps per proxy beside Bullet's own fields.
 
 #include <cstdint>
+#include <vector>
 
 #include "smb/box.hpp"
 #include "smb/bullet/broadphase.hpp"
@@ -26,6 +27,9 @@ struct Broadphase::Proxy : btBroadphaseProxy {
     bool held_static = false;
     /// Listed in restless_.
     bool restless = false;
+    /// The proxies this one is paired with in the cache (this broad phase's additions), so that
+    /// destroyProxy removes its pairs one by one instead of scanning the whole cache.
+    std::vector<std::uint32_t> partners;
 };
 
 namespace detail {

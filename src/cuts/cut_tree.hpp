@@ -150,35 +150,64 @@ public:
     /// The axial cut: the keys in `selector` (the lower coordinates of the group's boxes, in
     /// any order; they are reordered) are split into k segments of equal counts. Equal keys
     /// always share a segment, since a cut is a coordinate value, so a long run of equal keys may
-    /// leave segments empty and one segment full. The caller then sets the group's band with
-    /// set_band().
-    void cut(int level, std::size_t group, QuantileSelector<Real>& selector) {
+    /// leave segments empty and one segment full. Planes closer than `min_gap` to the plane kept
+    /// before them are dropped, and the dropped ones become +inf planes at the end (empty last
+    /// segments): see cut_group(). The caller then sets the group's band with set_band().
+    void cut(int level, std::size_t group, QuantileSelector<Real>& selector, Real min_gap = Real{0}) {
         Real* out = cuts_[level].data() + group * (k_ + 1);
         if (k_ > 1) {
             if (selector.keys.empty()) {
                 std::fill(out, out + (k_ - 1), Real{0});
             } else {
                 selector.select(k_, out);
+                if (min_gap > Real{0}) space_planes(out, k_ - 1, min_gap);
             }
         }
     }
 
-    /// The axial cut of a group of n boxes, box j's lower end given by key_at(j). The keys are
-    /// gathered into `selector`: all of them,
+    /// The axial cut of a group of n boxes, box j's lower end given by key_at(j) and its extent
+    /// along the axis by extent_at(j). The keys are gathered into `selector`: all of them,
     /// or, in a group of more than twice kSamplePerSegment keys per segment, those of the boxes
     /// at floor(i n / s) for s = kSamplePerSegment * k, which spares copying every key.
     /// Deterministic. An order of the boxes that aliases with the stride can only make the
     /// planes uneven, which costs time and is corrected by the next cut; it never changes the
     /// pairs.
-    template <class KeyAt>
-    void cut_group(int level, std::size_t group, std::size_t n, KeyAt&& key_at, QuantileSelector<Real>& selector) {
+    ///
+    /// Equal counts alone give segments thinner than the boxes where the boxes lie in a layer a
+    /// few boxes deep (a pile on a floor): most boxes then span more than two segments and leave
+    /// the levels as oversized boxes, whose check is the slow path. So the planes are kept at
+    /// least the group's typical extent apart (its upper quartile, from a sample): boxes up to
+    /// that extent span at most two segments, and the axis gets fewer, fuller segments instead.
+    /// Where the boxes are small against the segments (the usual case) no plane is dropped.
+    template <class KeyAt, class ExtentAt>
+    void cut_group(int level, std::size_t group, std::size_t n, KeyAt&& key_at, ExtentAt&& extent_at,
+                   QuantileSelector<Real>& selector) {
         const std::size_t sample = kSamplePerSegment * k_;
         const std::size_t take = n > 2 * sample ? sample : n;
         std::vector<Real>& keys = selector.keys;
         keys.clear();
         for (std::size_t i = 0; i < take; ++i) keys.push_back(key_at(take == n ? i : i * n / take));
-        cut(level, group, selector);
+        std::array<Real, kExtentSample> extents{};
+        const std::size_t sampled = std::min(n, kExtentSample);
+        for (std::size_t i = 0; i < sampled; ++i) extents[i] = extent_at(i * n / sampled);
+        Real min_gap{0};
+        if (sampled > 0) {
+            const auto quartile = extents.begin() + static_cast<std::ptrdiff_t>(sampled * 3 / 4);
+            std::nth_element(extents.begin(), quartile, extents.begin() + static_cast<std::ptrdiff_t>(sampled));
+            min_gap = *quartile;
+        }
+        cut(level, group, selector, min_gap);
     }
+
+    /// The same with no spacing of the planes (extents of 0).
+    template <class KeyAt>
+    void cut_group(int level, std::size_t group, std::size_t n, KeyAt&& key_at, QuantileSelector<Real>& selector) {
+        cut_group(
+            level, group, n, key_at, [](std::size_t) { return Real{0}; }, selector);
+    }
+
+    /// Boxes sampled for a group's typical extent (cut_group()).
+    static constexpr std::size_t kExtentSample = 64;
 
     /// A group with more than twice this many keys per segment takes its quantiles from an
     /// evenly spaced sample of this many keys per segment instead of from all of them
@@ -211,6 +240,19 @@ public:
     }
 
 private:
+    /// Keeps the first of `count` planes in order and each later one at least `min_gap` above
+    /// the last one kept; the kept planes move to the front and +inf fills the rest, which no
+    /// finite coordinate reaches (the segments past the last kept plane stay empty, and
+    /// segment_of_max() never sees a repeated plane that would make a box span three segments).
+    static void space_planes(Real* planes, std::uint32_t count, Real min_gap) {
+        std::uint32_t kept = 0;
+        for (std::uint32_t j = 0; j < count; ++j) {
+            if (kept > 0 && !(planes[j] >= planes[kept - 1] + min_gap)) continue;
+            planes[kept++] = planes[j];
+        }
+        std::fill(planes + kept, planes + count, std::numeric_limits<Real>::infinity());
+    }
+
     std::uint32_t k_ = 0;
     std::array<std::size_t, Dim + 1> groups_{};
     std::array<std::vector<Real>, Dim> cuts_;

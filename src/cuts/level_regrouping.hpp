@@ -163,7 +163,9 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
     if (cuts.needs_cut(0, 0, fullest)) {
         const Stopwatch cut_watch;
         cuts.cut_group(
-            0, 0, n, [&](std::size_t i) { return boxes[i].min[axis_of_level(0)]; }, workers_[0].quantiles);
+            0, 0, n, [&](std::size_t i) { return boxes[i].min[axis_of_level(0)]; },
+            [&](std::size_t i) { return boxes[i].max[axis_of_level(0)] - boxes[i].min[axis_of_level(0)]; },
+            workers_[0].quantiles);
         const std::uint32_t balanced = locate_shares();
         std::size_t registrations = 0;
         for (const Worker& worker : workers_)
@@ -243,7 +245,9 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
             worker.marks.resize(marked_before);
             // No entry is published oversized (see GroupLocator::locate()): every one takes part.
             cuts.cut_group(
-                level, g, entries.size(), [&](std::size_t i) { return boxes[entries[i]].min[axis]; }, worker.quantiles);
+                level, g, entries.size(), [&](std::size_t i) { return boxes[entries[i]].min[axis]; },
+                [&](std::size_t i) { return boxes[entries[i]].max[axis] - boxes[entries[i]].min[axis]; },
+                worker.quantiles);
             const std::uint32_t balanced =
                 locator_.locate(level, g, cuts, entries, boxes, ranges, segment_count, worker, oversized_.data());
             std::size_t registrations = 0;

@@ -219,6 +219,32 @@ TEST(BulletBroadphase, AStepWithoutChangeKeepsEveryPair) {
     EXPECT_EQ(smb::test::cache_pairs(*broadphase.getOverlappingPairCache()), before);
 }
 
+TEST(BulletBroadphase, ADestroyedProxyLeavesNoPairInTheCacheEvenOnesAddedByOthers) {
+    // destroyProxy removes the proxy's own pairs by name while the cache holds only what the
+    // broad phase put there, and scans the cache once someone else has added a pair too.
+    Broadphase broadphase;
+    btOverlappingPairCache& cache = *broadphase.getOverlappingPairCache();
+    auto make = [&](float x) {
+        return broadphase.createProxy(btVector3(x, 0, 0), btVector3(x + 1, 1, 1), BOX_SHAPE_PROXYTYPE, nullptr,
+                                      btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter, nullptr);
+    };
+    btBroadphaseProxy* a = make(0.0f);
+    btBroadphaseProxy* b = make(0.5f);
+    btBroadphaseProxy* c = make(1.0f);
+    btBroadphaseProxy* far = make(10.0f);
+    broadphase.calculateOverlappingPairs(nullptr);
+    EXPECT_EQ(cache.getNumOverlappingPairs(), 3);  // a-b, a-c (touching), b-c
+    broadphase.destroyProxy(a, nullptr);
+    EXPECT_EQ(cache.getNumOverlappingPairs(), 1);
+    EXPECT_NE(cache.findPair(b, c), nullptr);
+    cache.addOverlappingPair(b, far);  // not an overlap: a pair of someone else's
+    broadphase.destroyProxy(far, nullptr);
+    EXPECT_EQ(cache.getNumOverlappingPairs(), 1);
+    EXPECT_EQ(cache.findPair(b, far), nullptr);
+    broadphase.calculateOverlappingPairs(nullptr);
+    EXPECT_EQ(smb::test::cache_pairs(cache), smb::test::expected_pairs({b, c}, cache));
+}
+
 TEST(BulletBroadphase, BadInputThrowsAndChangesNothing) {
     Broadphase broadphase;
     const float nan = std::numeric_limits<float>::quiet_NaN();

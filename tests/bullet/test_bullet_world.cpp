@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bullet/cache_reference.hpp"
+#include "owned_bodies.hpp"
 #include "smb/bullet/broadphase.hpp"
 
 namespace {
@@ -43,28 +44,21 @@ public:
         for (int i = 0; i < bodies; ++i) drop_one();
     }
 
-    ~PileWorld() {
-        for (auto& body : bodies_) world_.removeRigidBody(body.get());
-    }
+    ~PileWorld() { owned_.remove_all(world_); }
     PileWorld(const PileWorld&) = delete;
     PileWorld& operator=(const PileWorld&) = delete;
 
     void drop_one() {
         std::uniform_real_distribution<float> across(-6.0f, 6.0f);
         std::uniform_real_distribution<float> up(1.0f, 14.0f);
-        const bool sphere = bodies_.size() % 3 == 0;
+        const bool sphere = owned_.bodies.size() % 3 == 0;
         add_body(sphere ? static_cast<btCollisionShape&>(sphere_shape_) : box_shape_, 1,
                  btVector3(across(random_), up(random_), across(random_)));
     }
 
     void remove_one() {
-        std::uniform_int_distribution<std::size_t> pick(2, bodies_.size() - 1);  // not the floor or pusher
-        const std::size_t at = pick(random_);
-        world_.removeRigidBody(bodies_[at].get());
-        bodies_[at] = std::move(bodies_.back());
-        bodies_.pop_back();
-        motions_[at] = std::move(motions_.back());
-        motions_.pop_back();
+        std::uniform_int_distribution<std::size_t> pick(2, owned_.bodies.size() - 1);  // not the floor or pusher
+        owned_.remove(world_, pick(random_));
     }
 
     void step(int index) {
@@ -82,7 +76,7 @@ public:
 
     [[nodiscard]] std::vector<btBroadphaseProxy*> proxies() const {
         std::vector<btBroadphaseProxy*> out;
-        for (const auto& body : bodies_) out.push_back(body->getBroadphaseHandle());
+        for (const auto& body : owned_.bodies) out.push_back(body->getBroadphaseHandle());
         return out;
     }
 
@@ -94,21 +88,14 @@ public:
 
 private:
     btRigidBody& add_body(btCollisionShape& shape, float mass, const btVector3& origin) {
-        btVector3 inertia(0, 0, 0);
-        if (mass > 0) shape.calculateLocalInertia(mass, inertia);
-        motions_.push_back(std::make_unique<btDefaultMotionState>(btTransform(btQuaternion::getIdentity(), origin)));
-        bodies_.push_back(std::make_unique<btRigidBody>(
-            btRigidBody::btRigidBodyConstructionInfo(mass, motions_.back().get(), &shape, inertia)));
-        world_.addRigidBody(bodies_.back().get());
-        return *bodies_.back();
+        return owned_.add(world_, shape, mass, origin);
     }
 
     btBoxShape floor_shape_;
     btBoxShape box_shape_;
     btSphereShape sphere_shape_;
     btBoxShape pusher_shape_;
-    std::vector<std::unique_ptr<btDefaultMotionState>> motions_;
-    std::vector<std::unique_ptr<btRigidBody>> bodies_;
+    smb::examples::OwnedBodies owned_;
     btRigidBody* pusher_ = nullptr;
     std::mt19937 random_{99};
 };

@@ -98,6 +98,8 @@ private:
     void flush_moves();
     void sync_filters();
     void apply_pair_events(btDispatcher* dispatcher);
+    /// Removes the pairs of `proxy` from the cache, and from its partners' lists.
+    void remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher);
     void settle_restless_statics();
     void set_callback_mode(bool callback_mode);
 
@@ -119,6 +121,10 @@ private:
     /// Static-class proxies held dynamic because they moved lately.
     std::vector<std::uint32_t> restless_;
     std::size_t live_ = 0;
+    /// Pairs this broad phase added to the cache and has not removed (the partners' lists hold
+    /// each twice). When the cache holds a different number, someone else added or removed
+    /// pairs there, and a destroyed proxy's pairs are found by scanning the cache instead.
+    std::size_t pairs_held_ = 0;
     /// Something changed since the last detection (a box, a proxy, a filter).
     bool changed_ = true;
     bool callback_mode_ = false;
