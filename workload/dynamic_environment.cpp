@@ -167,15 +167,7 @@ void DynamicEnvironment<Dim>::move_boxes(std::size_t count) {
 template <int Dim>
 void DynamicEnvironment<Dim>::refresh_boxes(std::size_t first) {
     boxes_.resize(ids_.size());
-    for (std::size_t i = first; i < ids_.size(); ++i) {
-        auto& box = boxes_[i];
-        for (int k = 0; k < Dim; ++k) {
-            const double half = sides_[i][k] / 2;
-            // The clamps absorb the last-bit rounding of centre +- half at the cube's walls.
-            box.min[k] = std::max(0.0, centres_[i][k] - half);
-            box.max[k] = std::min(cube_side_, centres_[i][k] + half);
-        }
-    }
+    for (std::size_t i = first; i < ids_.size(); ++i) boxes_[i] = box_in_cube<Dim>(centres_[i], sides_[i], cube_side_);
 }
 
 template <int Dim>

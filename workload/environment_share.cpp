@@ -126,13 +126,7 @@ void EnvironmentShare<Dim>::move_boxes(std::size_t survivors) {
 
 template <int Dim>
 void EnvironmentShare<Dim>::refresh_box(std::size_t row) {
-    auto& box = boxes_[row];
-    for (int k = 0; k < Dim; ++k) {
-        const double half = sides_[row][k] / 2;
-        // As DynamicEnvironment: the clamps absorb the last-bit rounding at the cube's walls.
-        box.min[k] = std::max(0.0, centres_[row][k] - half);
-        box.max[k] = std::min(cube_side_, centres_[row][k] + half);
-    }
+    boxes_[row] = box_in_cube<Dim>(centres_[row], sides_[row], cube_side_);
 }
 
 template <int Dim>
