@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
             layer_ids[env.ids()[i] % 2].push_back(env.ids()[i]);
             layer_boxes[env.ids()[i] % 2].push_back(env.boxes()[i]);
         }
-        for (int l = 0; l < 2; ++l) layer_mirror[l].follow(layer_removed[l], layer_inserted[l], layer_ids[l], layer_boxes[l]);
+        for (int l = 0; l < 2; ++l)
+            layer_mirror[l].follow(layer_removed[l], layer_inserted[l], layer_ids[l], layer_boxes[l]);
         smb::DetectFilters layers;
         layers.filters = filters;
         for (int turn = 0; turn < 3; ++turn) {

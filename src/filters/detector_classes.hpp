@@ -54,8 +54,7 @@ public:
             part.boxes.resize(part.members.size());
             for (std::size_t k = 0; k < part.members.size(); ++k) part.boxes[k] = boxes[part.members[k]];
             if (!part.state) part.state = std::make_unique<DetectorState<Real, Dim>>(settings);
-            FilteredSink filtered(filters, sink, settings.pair_chunk_size, part.members,
-                                  !classes_.all_pass_within(c));
+            FilteredSink filtered(filters, sink, settings.pair_chunk_size, part.members, !classes_.all_pass_within(c));
             const DetectStats own = part.state->detect(part.boxes, PairSink(std::ref(filtered)));
             reported += filtered.finish();
             add_class_stats(stats, own);
@@ -172,7 +171,7 @@ private:
 
     InteractionClasses classes_;
     std::vector<Part> parts_;
-    std::vector<std::uint8_t> class_of_index_;       // per caller index, kNoClass when in none
+    std::vector<std::uint8_t> class_of_index_;      // per caller index, kNoClass when in none
     std::vector<std::uint32_t> position_of_index_;  // its position among its class's members
     bool split_ = false;
 };
