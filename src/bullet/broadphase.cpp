@@ -5,6 +5,7 @@
 #include "smb/bullet/broadphase.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -262,8 +263,8 @@ void Broadphase::apply_pair_events(btDispatcher* dispatcher) {
         Proxy* a = live(pair.a);
         Proxy* b = live(pair.b);
         if (a == nullptr || b == nullptr) continue;  // removed with the proxy destroyed
-        erase_partner(a->partners, pair.b);
-        erase_partner(b->partners, pair.a);
+        erase_partner(a->partners, static_cast<std::uint32_t>(pair.b));
+        erase_partner(b->partners, static_cast<std::uint32_t>(pair.a));
         --pairs_held_;
         cache_->removeOverlappingPair(a, b, dispatcher);
     }
@@ -271,13 +272,14 @@ void Broadphase::apply_pair_events(btDispatcher* dispatcher) {
         Proxy* a = live(pair.a);
         Proxy* b = live(pair.b);
         if (a == nullptr || b == nullptr) continue;
-        a->partners.push_back(pair.b);
-        b->partners.push_back(pair.a);
+        // Ids are the proxies' m_uniqueId, an int: they fit the partner lists' 32 bits.
+        a->partners.push_back(static_cast<std::uint32_t>(pair.b));
+        b->partners.push_back(static_cast<std::uint32_t>(pair.a));
         ++pairs_held_;
         // A cache may refuse a pair (btNullPairCache refuses all): then it is not held.
         if (cache_->addOverlappingPair(a, b) == nullptr && a->alive && b->alive) {
-            erase_partner(a->partners, pair.b);
-            erase_partner(b->partners, pair.a);
+            erase_partner(a->partners, static_cast<std::uint32_t>(pair.b));
+            erase_partner(b->partners, static_cast<std::uint32_t>(pair.a));
             --pairs_held_;
         }
     }
