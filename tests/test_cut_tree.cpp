@@ -95,7 +95,9 @@ TEST(CutTree, PlanesStayATypicalExtentApartSoThatALayerOfBoxesIsNotOversized) {
             continue;
         }
         ++finite;
-        if (j > 0) EXPECT_GE(planes[j] - planes[j - 1], 1.0F);
+        if (j > 0) {
+            EXPECT_GE(planes[j] - planes[j - 1], 1.0F);
+        }
     }
     EXPECT_GE(finite, 2U);
     EXPECT_LE(finite, 3U);
