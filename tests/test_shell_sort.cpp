@@ -53,7 +53,12 @@ INSTANTIATE_TEST_SUITE_P(Shell, DisIncrements, ::testing::Values(1, 2, 3, 5, 8, 
 TEST(Dis, AlmostSortedListCostsAboutOneMovePerDisplacement) {
     std::vector<AxisEntry<double>> list(10000);
     for (std::size_t i = 0; i < list.size(); ++i) list[i] = {static_cast<double>(i), static_cast<Item>(2 * i)};
-    for (std::size_t i = 0; i + 1 < list.size(); i += 100) std::swap(list[i].key, list[i + 1].key);
+    // By value: a list entry is packed, and a reference to its key would be misaligned.
+    for (std::size_t i = 0; i + 1 < list.size(); i += 100) {
+        const double key = list[i].key;
+        list[i].key = list[i + 1].key;
+        list[i + 1].key = key;
+    }
     const DisWork work = diminishing_increment_sort<double>(list, 1);
     EXPECT_TRUE(sorted(list));
     EXPECT_EQ(work.fine_moves, 100U);
