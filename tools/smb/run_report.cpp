@@ -176,7 +176,8 @@ void print_summary_check(const RunRecord& run, std::ostream& out) {
 void print_text_summary(const RunRecord& run, std::ostream& out) {
     auto line = [&out](std::string_view label, const std::string& text) { print_summary_line(out, label, text); };
     print_summary_heading(run, out);
-    line("pipeline", fmt::format("{}, {} thread{}", run.pipeline, run.threads, run.threads == 1 ? "" : "s"));
+    const std::string rule = run.segment_rule.empty() ? std::string() : ", segment rule " + run.segment_rule;
+    line("pipeline", fmt::format("{}{}, {} thread{}", run.pipeline, rule, run.threads, run.threads == 1 ? "" : "s"));
     if (!run.steps.empty()) {
         const StepRecord& build = run.steps.front();
         line("build (step 1)", fmt::format("{} ({})", duration_text(build.detect_seconds),
@@ -244,6 +245,7 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     summary["seed"] = run.seed;
     summary["target_cell_population"] = run.target_cell_population;
     summary["pipeline"] = run.pipeline;
+    summary["segment_rule"] = run.segment_rule.empty() ? json(nullptr) : json(run.segment_rule);
     summary["threads"] = run.threads;
     summary["skin"] = run.skin;
     if (run.skin > 0 && has_later_steps) {
