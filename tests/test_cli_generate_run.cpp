@@ -153,6 +153,12 @@ TEST(CliRun, PaperSegmentRuleIsChosenAndChecked) {
     EXPECT_EQ(summary["segment_rule"], "paper");
     EXPECT_EQ(summary["oversized_boxes_last"], 0);
     EXPECT_TRUE(summary["check"]["ok"].get<bool>());
+    const auto& counts = summary["counts_median"];
+    EXPECT_GT(counts["cells"].get<double>(), 0);
+    EXPECT_GT(counts["largest_cell_boxes"].get<double>(), 0);
+    for (const char* axis : {"z", "y", "x"}) {
+        EXPECT_GT(counts["levels"][axis]["sort_comparisons"].get<double>(), 0) << axis;
+    }
 }
 
 TEST(CliRun, CheckEveryK2d) {
