@@ -29,9 +29,9 @@ enum class SegmentRule {
     /// and every segment but a section's last at least twice as long, on its level's axis, as the
     /// largest extent of any box on that axis, so that no box spans more than two segments. A
     /// segment that would be shorter takes items from the next ones, leaving empty segments at
-    /// the section's end. One very large box (a floor under a pile) thus makes one segment per
-    /// section and one cell for the whole world, which the paper avoids by splitting such boxes
-    /// beforehand.
+    /// the section's end. A box as long as the scene on some axis thus leaves one segment per
+    /// section on that axis (a floor under a pile: one cell per slab, checked by a sweep), which
+    /// the paper avoids by splitting such boxes beforehand.
     twice_largest_box,
 };
 
