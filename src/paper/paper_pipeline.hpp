@@ -27,6 +27,7 @@
 #include "paper/mask_array.hpp"
 #include "paper/oversized_sweep.hpp"
 #include "paper/paper_level.hpp"
+#include "paper/segment_rule.hpp"
 #include "paper/shell_sort.hpp"
 #include "paper/singular_regroup.hpp"
 #include "smb/settings.hpp"
@@ -101,7 +102,6 @@ private:
     static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
 
     void choose_cuts();
-    void measure_segment_lengths();
     void refresh_keys(Level& level, int depth);
     void collect_arrivals(int depth);
     void mark_oversized(int depth);
@@ -128,9 +128,8 @@ private:
     CellChecker<Real, Dim> checker_;
     OversizedSweep<Real, Dim> oversized_sweep_;
 
-    std::size_t listed_ = 0;                      // slots [0, listed_) are in the lists; later ones arrived since
-    SegmentId cuts_ = 0;                          // segments per section on every level
-    std::array<Real, Dim> min_segment_length_{};  // per level; zero but for the paper's rule
+    std::size_t listed_ = 0;  // slots [0, listed_) are in the lists; later ones arrived since
+    SegmentId cuts_ = 0;      // segments per section on every level
 };
 
 template <std::floating_point Real, int Dim>
@@ -139,7 +138,7 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
     const std::size_t n = store_->slot_count();
     if (n > 0) {
         choose_cuts();
-        measure_segment_lengths();
+        const std::array<Real, Dim> shortest = shortest_segments<Real, Dim>(settings_->segment_rule, store_->boxes());
         fit_capacity(segment_of_, n << Dim);  // the deepest level's length: the longest
         Stopwatch phase;
         double sorting = 0;
@@ -180,7 +179,7 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
             stats.level_sort_moves[static_cast<std::size_t>(depth)] = work.moves();
             stats.level_sort_comparisons[static_cast<std::size_t>(depth)] = work.comparisons;
             stats.level_sort_fallback_items[static_cast<std::size_t>(depth)] = work.fallback_items;
-            level.cut(cuts_, segment_of_, min_segment_length_[static_cast<std::size_t>(depth)]);
+            level.cut(cuts_, segment_of_, shortest[static_cast<std::size_t>(depth)]);
             if (depth == 0) oversized_.assign(n, 0);
             mark_oversized(depth);
         }
@@ -230,24 +229,6 @@ void PaperPipeline<Real, Dim>::choose_cuts() {
     const double current = static_cast<double>(cuts_);
     if (cuts_ == 0 || ideal > 1.25 * current || ideal < 0.8 * current) {
         cuts_ = static_cast<SegmentId>(std::lround(ideal));
-    }
-}
-
-/// The paper's segment rule (SegmentRule::twice_largest_box): every segment of level l at least
-/// twice the largest extent of any box on the level's axis, the margin the paper keeps. Boxes
-/// change size every step, so the largest is measured afresh; one pass over the boxes.
-template <std::floating_point Real, int Dim>
-void PaperPipeline<Real, Dim>::measure_segment_lengths() {
-    min_segment_length_.fill(Real{0});
-    if (settings_->segment_rule != SegmentRule::twice_largest_box) return;
-    std::array<Real, Dim> largest{};
-    for (const auto& box : store_->boxes()) {
-        for (int axis = 0; axis < Dim; ++axis) largest[axis] = std::max(largest[axis], box.max[axis] - box.min[axis]);
-    }
-    // Where every box is flat on an axis the length is zero and the counts alone cut it: a box
-    // whose two ends share one key never spans two segments.
-    for (int depth = 0; depth < Dim; ++depth) {
-        min_segment_length_[static_cast<std::size_t>(depth)] = 2 * largest[axis_of_level(depth)];
     }
 }
 
