@@ -136,11 +136,29 @@ TEST(CliRun, PaperPipelineTimesItsListSortsNotQuantiles) {
     EXPECT_EQ(build_phases["quantile"].get<double>(), 0);
     EXPECT_EQ(build_phases["scan"].get<double>(), 0);
     EXPECT_LE(phase_sum(build_phases), summary["build_seconds"].get<double>());
+    EXPECT_EQ(summary["segment_rule"], "count");
 
     const auto text = run_smb(folder, {"run", "-n", "1000", "-s", "3", "--pipeline", "paper"});
     ASSERT_EQ(text.status, 0) << text.err;
     EXPECT_NE(text.out.find("list sort"), std::string::npos) << text.out;
     EXPECT_EQ(text.out.find("quantiles"), std::string::npos) << text.out;
+}
+
+TEST(CliRun, PaperSegmentRuleIsChosenAndChecked) {
+    TempFolder folder;
+    const auto result =
+        run_smb(folder, {"run", "-n", "2000", "-s", "3", "--pipeline", "paper", "--segment-rule", "paper", "--json"});
+    ASSERT_EQ(result.status, 0) << result.err;
+    const auto summary = nlohmann::json::parse(result.out);
+    EXPECT_EQ(summary["segment_rule"], "paper");
+    EXPECT_EQ(summary["oversized_boxes_last"], 0);
+    EXPECT_TRUE(summary["check"]["ok"].get<bool>());
+    const auto& counts = summary["counts_median"];
+    EXPECT_GT(counts["cells"].get<double>(), 0);
+    EXPECT_GT(counts["largest_cell_boxes"].get<double>(), 0);
+    for (const char* axis : {"z", "y", "x"}) {
+        EXPECT_GT(counts["levels"][axis]["sort_comparisons"].get<double>(), 0) << axis;
+    }
 }
 
 TEST(CliRun, CheckEveryK2d) {

@@ -92,6 +92,7 @@ TEST(CliMessages, RejectedValuesReadAsTheUserWroteThem) {
         {{"run", "-L", "1.5"}, "--update-factor: must be in [0, 1), not 1.5"},
         {{"run", "-E", "0"}, "--density: must be greater than 0, not 0"},
         {{"run", "--skin", "-0.25"}, "--skin: must be at least 0, not -0.25"},
+        {{"run", "--segment-rule", "paper"}, "--segment-rule: needs --pipeline paper"},
         {{"run", "-s", "0"}, "--steps: must be at least 1, not 0"},
         {{"run", "-n", "-5"}, "--boxes: must be at least 0, not -5"},
         {{"run", "--threads", "2000"}, "--threads: must be in [0, 1024], not 2000"},

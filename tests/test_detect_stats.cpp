@@ -70,6 +70,52 @@ TEST(DetectStats, PaperListsSortListsAndSelectNoQuantiles) {
     }
 }
 
+// The counts of the paper's lists, level by level: what each level's sort moved and compared,
+// which items the regrouping moved to another section; the persistent cuts leave them zero.
+TEST(DetectStats, PaperListsCountEachLevelsWork) {
+    for (const Pipeline pipeline : {Pipeline::paper_lists, Pipeline::persistent_cuts}) {
+        WorldSettings settings;
+        settings.pipeline = pipeline;
+        World3d world(settings);
+        std::vector<Box3d> boxes = random_scene(20000, 3);
+        world.assign(boxes);
+        std::vector<Pair> pairs;
+        world.detect(pairs);
+        std::mt19937_64 random(4);
+        std::uniform_real_distribution<double> shift(-0.3, 0.3);
+        for (Box3d& box : boxes) {
+            for (int k = 0; k < 3; ++k) {
+                const double by = shift(random);
+                box.min[k] += by;
+                box.max[k] += by;
+            }
+        }
+        world.assign(boxes);
+        const DetectStats step = world.detect(pairs);
+        if (pipeline == Pipeline::persistent_cuts) {
+            for (int level = 0; level < 3; ++level) {
+                EXPECT_EQ(step.level_sort_moves[level] + step.level_sort_comparisons[level] +
+                              step.level_singular_items[level] + step.level_sort_fallback_items[level],
+                          0U);
+            }
+            EXPECT_EQ(step.largest_cell_boxes, 0U);
+            continue;
+        }
+        EXPECT_EQ(step.level_sort_moves[0] + step.level_sort_moves[1] + step.level_sort_moves[2], step.sort_moves);
+        for (int level = 0; level < 3; ++level) {
+            SCOPED_TRACE(::testing::Message() << "level " << level);
+            EXPECT_GT(step.level_sort_moves[level], 0U) << "every box moved";
+            // One comparison per item per pass at least: 2, 4, 8 items per box on levels 0, 1, 2.
+            EXPECT_GE(step.level_sort_comparisons[level], (std::size_t{20000} << (level + 1)) - 16);
+            EXPECT_GE(step.level_sort_comparisons[level], step.level_sort_moves[level]);
+        }
+        EXPECT_EQ(step.level_singular_items[0], 0U) << "level 0 is one section";
+        EXPECT_GT(step.level_singular_items[1], 0U) << "some boxes crossed a slab's plane";
+        EXPECT_GT(step.level_singular_items[2], step.level_singular_items[1]);
+        EXPECT_GT(step.largest_cell_boxes, 1U);
+    }
+}
+
 TEST(DetectStats, DetectorScansItsInputAndHasNoUpdates) {
     for (const double skin : {0.0, 0.1}) {
         DetectorSettings settings;

@@ -10,3 +10,4 @@ endforeach()
 # Public-API tests of pair limits and streaming.
 smb_add_gtest(NAME test_pair_limit SOURCES test_pair_limit.cpp)
 smb_add_gtest(NAME test_paper_memory SOURCES test_paper_memory.cpp)
+smb_add_gtest(NAME test_paper_segment_rule SOURCES test_paper_segment_rule.cpp)

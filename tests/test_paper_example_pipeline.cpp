@@ -129,7 +129,7 @@ protected:
         store_.update(ids_, kBoxes);
     }
 
-    DetectionSettings settings_;
+    WorldSettings settings_;
     BoxStore<double, 2> store_;
     Pipeline2 pipeline_{&store_, &settings_};
     std::vector<BoxId> ids_;

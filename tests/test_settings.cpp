@@ -89,6 +89,9 @@ TEST(Settings, ErrorsNameTheClassTheSettingCameIn) {
     world = {};
     world.pipeline = static_cast<Pipeline>(7);
     EXPECT_NE(refusal<World2d>(world).find("WorldSettings::pipeline"), std::string::npos);
+    world = {};
+    world.segment_rule = static_cast<SegmentRule>(5);
+    EXPECT_NE(refusal<World3d>(world).find("WorldSettings::segment_rule"), std::string::npos);
     detector = {};
     detector.skin = std::numeric_limits<double>::quiet_NaN();
     EXPECT_NE(refusal<Detector2d>(detector).find("DetectorSettings::skin"), std::string::npos);

@@ -19,6 +19,22 @@ enum class Pipeline {
     paper_lists,
 };
 
+/// How Pipeline::paper_lists cuts each sorted section into segments (the paper's sub-lists).
+enum class SegmentRule {
+    /// The default: about (N / target_cell_population)^(1/Dim) segments per section on every
+    /// level, of (nearly) equal counts, whatever the boxes' sizes. A box that spans more than two
+    /// segments on some level is checked apart (docs/algorithm.md, deviation 3).
+    from_count,
+    /// The paper's own rule (its remark 4 of Section 2.4): the same number of segments at most,
+    /// and every segment but a section's last at least twice as long, on its level's axis, as the
+    /// largest extent of any box on that axis, so that no box spans more than two segments. A
+    /// segment that would be shorter takes items from the next ones, leaving empty segments at
+    /// the section's end. A box as long as the scene on some axis thus leaves one segment per
+    /// section on that axis (a floor under a pile: one cell per slab, checked by a sweep), which
+    /// the paper avoids by splitting such boxes beforehand.
+    twice_largest_box,
+};
+
 /// What World and Detector both take: the axial cuts, the way pairs are handed over, the
 /// threads. Not used on its own: a World takes WorldSettings, a Detector DetectorSettings.
 struct DetectionSettings {
@@ -48,6 +64,8 @@ struct DetectionSettings {
 struct WorldSettings : DetectionSettings {
     /// Which pipeline detects the pairs.
     Pipeline pipeline = Pipeline::persistent_cuts;
+    /// How Pipeline::paper_lists chooses its segments; the persistent cuts do not read it.
+    SegmentRule segment_rule = SegmentRule::from_count;
 };
 
 /// Tuning of a Detector: the shared DetectionSettings and the skin. A Detector always detects

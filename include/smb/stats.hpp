@@ -21,6 +21,23 @@ struct DetectStats {
     std::size_t sort_moves = 0;
     std::size_t bytes_held = 0;  ///< heap bytes the world or detector holds after the call
 
+    /// Pipeline::paper_lists, per level l (whose axis is Dim - 1 - l: z, y, x in 3D; the third
+    /// stays zero in 2D): items moved by the level's diminishing increment sorts; their key
+    /// comparisons, counted as one per item per pass plus one per move (an upper bound by the
+    /// items that reached the front of their section); and the singular items, those whose
+    /// parent item changed segment on the level above, so that the regrouping moved them to
+    /// another section (zero on level 0; the boxes inserted since the last detection are not
+    /// counted); and the items of the sections whose sort ran out of its move budget (8 moves
+    /// per item in one pass) and was finished by introsort, whose comparisons are not counted.
+    /// Zero with the persistent cuts.
+    std::array<std::size_t, 3> level_sort_moves{};
+    std::array<std::size_t, 3> level_sort_comparisons{};
+    std::array<std::size_t, 3> level_singular_items{};
+    std::array<std::size_t, 3> level_sort_fallback_items{};
+    /// Pipeline::paper_lists: the most boxes any one cell held (the side of its flag matrix).
+    /// Zero with the persistent cuts.
+    std::size_t largest_cell_boxes = 0;
+
     /// Detector with a skin (DetectorSettings::skin): candidate pairs kept after this
     /// detection, boxes that left their fat box (or arrived) and found new candidates, and
     /// whether the candidates were rebuilt from scratch by the axial cuts. World with static

@@ -30,6 +30,8 @@ inline void check_detection_settings(const DetectionSettings& settings, const st
     check_detection_settings(settings, "WorldSettings");
     if (settings.pipeline != Pipeline::persistent_cuts && settings.pipeline != Pipeline::paper_lists)
         throw ArgumentError("WorldSettings::pipeline is not a known Pipeline");
+    if (settings.segment_rule != SegmentRule::from_count && settings.segment_rule != SegmentRule::twice_largest_box)
+        throw ArgumentError("WorldSettings::segment_rule is not a known SegmentRule");
     return settings;
 }
 

@@ -8,6 +8,9 @@
 // layer of boxes (all z equal) would be cut through its middle: each box's min and max would
 // land in different segments far apart and every box would look oversized. With it, segment
 // boundaries are true coordinate planes, which the proof of exactness relies on.
+//
+// With the paper's segment rule a cut also moves forward until the segment is long enough on the
+// axis (twice the largest box), so that no box spans three segments (the paper's Fig. 5).
 
 #include <algorithm>
 #include <cstddef>
@@ -25,10 +28,13 @@ using SegmentId = std::uint32_t;
 /// run out of items. Writes, for every item of the section,
 /// `first_segment` + its segment number into `segment_of` (the paper's index array, indexed by
 /// item id), and appends the list offset (relative to `section_offset`) at which each segment
-/// begins to `segment_begin`.
+/// begins to `segment_begin`. A positive `min_length` is the paper's segment rule: every segment
+/// but the last reaches at least that far on the axis, from its first key to the next
+/// segment's first key (settings.hpp, SegmentRule::twice_largest_box).
 template <std::floating_point Real>
 void cut_section(std::span<const AxisEntry<Real>> section, std::size_t section_offset, SegmentId segments,
-                 SegmentId first_segment, std::span<SegmentId> segment_of, std::vector<std::uint32_t>& segment_begin) {
+                 SegmentId first_segment, std::span<SegmentId> segment_of, std::vector<std::uint32_t>& segment_begin,
+                 Real min_length = 0) {
     const std::size_t n = section.size();
     std::size_t begin = 0;
     for (SegmentId s = 0; s < segments; ++s) {
@@ -39,6 +45,17 @@ void cut_section(std::span<const AxisEntry<Real>> section, std::size_t section_o
             // empty segments come last, and a box's two ends are never two segments apart
             // merely because an empty segment lies between them.
             end = begin + std::max<std::size_t>(1, (n - begin) / (segments - s));
+            if (min_length > 0 && end < n) {
+                // The first key at least min_length past this segment's first: a change of
+                // value, so the loop below leaves it where it is.
+                const Real reach = section[begin].key + min_length;
+                if (section[end].key < reach) {
+                    end = static_cast<std::size_t>(
+                        std::partition_point(section.begin() + static_cast<std::ptrdiff_t>(end), section.end(),
+                                             [reach](const AxisEntry<Real>& entry) { return entry.key < reach; }) -
+                        section.begin());
+                }
+            }
             while (end < n && !(section[end - 1].key < section[end].key)) ++end;
         }
         segment_begin.push_back(static_cast<std::uint32_t>(section_offset + begin));

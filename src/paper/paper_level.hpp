@@ -58,9 +58,10 @@ struct PaperLevel {
         return work;
     }
 
-    /// The axial cut: every section into `cuts` segments of (nearly) equal length; `segment_of`
-    /// (the index array, by item id) is filled for this level's items.
-    void cut(SegmentId cuts, std::vector<SegmentId>& segment_of) {
+    /// The axial cut: every section into `cuts` segments of (nearly) equal length, each but a
+    /// section's last at least `min_length` long on the axis; `segment_of` (the index array, by
+    /// item id) is filled for this level's items.
+    void cut(SegmentId cuts, std::vector<SegmentId>& segment_of, Real min_length = 0) {
         segment_of.resize(list.size());
         segment_begin.clear();
         const std::size_t sections = section_begin.size() - 1;
@@ -68,7 +69,8 @@ struct PaperLevel {
         for (std::size_t j = 0; j < sections; ++j) {
             const std::uint32_t first = section_begin[j];
             const std::span<const Entry> section(list.data() + first, section_begin[j + 1] - first);
-            cut_section<Real>(section, first, cuts, static_cast<SegmentId>(j * cuts), segment_of, segment_begin);
+            cut_section<Real>(section, first, cuts, static_cast<SegmentId>(j * cuts), segment_of, segment_begin,
+                              min_length);
         }
         segment_begin.push_back(static_cast<std::uint32_t>(list.size()));
     }

@@ -27,6 +27,7 @@
 #include "paper/mask_array.hpp"
 #include "paper/oversized_sweep.hpp"
 #include "paper/paper_level.hpp"
+#include "paper/segment_rule.hpp"
 #include "paper/shell_sort.hpp"
 #include "paper/singular_regroup.hpp"
 #include "smb/settings.hpp"
@@ -68,7 +69,7 @@ void merge_from_back(std::vector<Entry>& list, const std::vector<Entry>& arrival
 template <std::floating_point Real, int Dim>
 class PaperPipeline {
 public:
-    PaperPipeline(const BoxStore<Real, Dim>* store, const DetectionSettings* settings)
+    PaperPipeline(const BoxStore<Real, Dim>* store, const WorldSettings* settings)
         : store_(store), settings_(settings) {}
 
     /// Renumbers every list after BoxStore::compact() dropped removed slots, keeping each
@@ -107,11 +108,11 @@ private:
     void release_oversized_scratch();
     void build_cell_lists();
     template <class Report>
-    void check_cells(Report& report);
+    std::size_t check_cells(Report& report);
     void check_invariants() const;
 
     const BoxStore<Real, Dim>* store_;
-    const DetectionSettings* settings_;
+    const WorldSettings* settings_;
 
     std::array<Level, Dim> levels_;
     std::array<std::vector<Item>, Dim - 1> cell_lists_;  // the paper's Y2 (2D); Y2, Z2 (3D)
@@ -137,6 +138,7 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
     const std::size_t n = store_->slot_count();
     if (n > 0) {
         choose_cuts();
+        const std::array<Real, Dim> shortest = shortest_segments<Real, Dim>(settings_->segment_rule, store_->boxes());
         fit_capacity(segment_of_, n << Dim);  // the deepest level's length: the longest
         Stopwatch phase;
         double sorting = 0;
@@ -164,6 +166,8 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
                 }
                 regroup_by_parent_segment<Real>(level.list, level.section_begin, arrivals_, segment_of_,
                                                 section_scratch_, regroup_);
+                stats.level_singular_items[static_cast<std::size_t>(depth)] =
+                    regroup_.singular.size() - arrivals_.size();
                 level.section_begin.swap(section_scratch_);
             }
             SMB_ASSERT(level.list.size() == (n << (depth + 1)), "a list lost or gained items");
@@ -172,7 +176,10 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
             sorting += sort_watch.seconds();
             level.dis.learn(work);
             stats.sort_moves += work.moves();
-            level.cut(cuts_, segment_of_);
+            stats.level_sort_moves[static_cast<std::size_t>(depth)] = work.moves();
+            stats.level_sort_comparisons[static_cast<std::size_t>(depth)] = work.comparisons;
+            stats.level_sort_fallback_items[static_cast<std::size_t>(depth)] = work.fallback_items;
+            level.cut(cuts_, segment_of_, shortest[static_cast<std::size_t>(depth)]);
             if (depth == 0) oversized_.assign(n, 0);
             mark_oversized(depth);
         }
@@ -185,7 +192,7 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
         stats.cells = levels_[Dim - 1].segment_begin.size() - 1;
         stats.oversized_boxes = oversized_count_;
 
-        check_cells(report);
+        stats.largest_cell_boxes = check_cells(report);
         if (oversized_count_ > 0) {
             oversized_sweep_.run(levels_[0].list, oversized_, store_->boxes(), report);
         }
@@ -301,10 +308,11 @@ void PaperPipeline<Real, Dim>::build_cell_lists() {
 }
 
 /// Steps 12-16 of Section 3: every cell in (slab, column, cell) order, with the mask array
-/// updated after each cell and after each finished segment of an upper level.
+/// updated after each cell and after each finished segment of an upper level. Returns the most
+/// boxes a cell held.
 template <std::floating_point Real, int Dim>
 template <class Report>
-void PaperPipeline<Real, Dim>::check_cells(Report& report) {
+std::size_t PaperPipeline<Real, Dim>::check_cells(Report& report) {
     const std::size_t n = store_->slot_count();
     const Level& deepest = levels_[Dim - 1];
     const auto& cell_begin = deepest.segment_begin;
@@ -318,6 +326,7 @@ void PaperPipeline<Real, Dim>::check_cells(Report& report) {
         cells_per_segment[static_cast<std::size_t>(depth)] = count;
     }
     typename CellChecker<Real, Dim>::CellLists lists;
+    std::size_t largest = 0;
     for (std::size_t cell = 0; cell < cells; ++cell) {
         const std::uint32_t first = cell_begin[cell];
         const std::size_t size = cell_begin[cell + 1] - first;
@@ -328,6 +337,7 @@ void PaperPipeline<Real, Dim>::check_cells(Report& report) {
             }
             lists.deepest = std::span<const Entry>(deepest.list.data() + first, size);
             checker_.check(lists, oversized_, store_->boxes(), map_, mask_, report);
+            largest = std::max(largest, map_.boxes().size());
             for (const std::uint32_t slot : map_.boxes()) mask_.mark_cell_done(slot, Dim - 1);
             map_.clear_cell();
         }
@@ -341,6 +351,7 @@ void PaperPipeline<Real, Dim>::check_cells(Report& report) {
             }
         }
     }
+    return largest;
 }
 
 template <std::floating_point Real, int Dim>

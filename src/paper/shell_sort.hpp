@@ -19,13 +19,19 @@ struct DisWork {
     std::size_t items = 0;
     std::size_t coarse_moves = 0;  ///< shifts made by the passes with increment > 1
     std::size_t fine_moves = 0;    ///< shifts made by the final insertion pass
-    bool fell_back = false;        ///< the move budget ran out and the list was introsorted
+    /// Key comparisons: one per item per pass, plus one per shift (at most: a shift that brings an
+    /// item to the front of its section is not followed by one).
+    std::size_t comparisons = 0;
+    bool fell_back = false;          ///< the move budget ran out and the list was introsorted
+    std::size_t fallback_items = 0;  ///< items of the lists that were introsorted
 
     DisWork& operator+=(const DisWork& other) noexcept {
         items += other.items;
         coarse_moves += other.coarse_moves;
         fine_moves += other.fine_moves;
+        comparisons += other.comparisons;
         fell_back = fell_back || other.fell_back;
+        fallback_items += other.fallback_items;
         return *this;
     }
     [[nodiscard]] std::size_t moves() const noexcept { return coarse_moves + fine_moves; }
@@ -67,9 +73,11 @@ DisWork diminishing_increment_sort(std::span<AxisEntry<Real>> list, int incremen
         std::size_t pass_moves = 0;
         const bool finished = gapped_insertion_pass(list, gap, budget, pass_moves);
         moves += pass_moves;
+        work.comparisons += list.size() - gap + pass_moves;
         if (!finished) {
             std::sort(list.begin(), list.end(), EntryLess{});
             work.fell_back = true;
+            work.fallback_items = list.size();
             return work;
         }
     }

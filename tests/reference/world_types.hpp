@@ -15,16 +15,24 @@ namespace smb::test {
 
 using WorldTypes = ::testing::Types<World2f, World2d, World3f, World3d>;
 
-/// The pipeline the world tests run: CTest runs each such test twice (tests/CMakeLists.txt),
-/// once with SMB_TEST_PIPELINE=paper, so both pipelines are held to brute force.
-inline Pipeline test_pipeline() {
+/// The value of SMB_TEST_PIPELINE, empty when unset.
+inline std::string_view chosen_test_pipeline() {
     const char* chosen = std::getenv("SMB_TEST_PIPELINE");
-    return chosen != nullptr && std::string_view(chosen) == "paper" ? Pipeline::paper_lists : Pipeline::persistent_cuts;
+    return chosen != nullptr ? std::string_view(chosen) : std::string_view();
+}
+
+/// The pipeline the world tests run: CTest runs each such test again with SMB_TEST_PIPELINE=paper
+/// (tests/CMakeLists.txt), and some of them with SMB_TEST_PIPELINE=paper-rule (the paper's
+/// lists with the paper's segment rule), so every pipeline is held to brute force.
+inline Pipeline test_pipeline() {
+    const std::string_view chosen = chosen_test_pipeline();
+    return chosen == "paper" || chosen == "paper-rule" ? Pipeline::paper_lists : Pipeline::persistent_cuts;
 }
 
 inline WorldSettings test_settings() {
     WorldSettings settings;
     settings.pipeline = test_pipeline();
+    if (chosen_test_pipeline() == "paper-rule") settings.segment_rule = SegmentRule::twice_largest_box;
     return settings;
 }
 

@@ -82,6 +82,13 @@ RunCommand::RunCommand(CLI::App& parent)
                                       "through smb::Detector, over the environment's own array of boxes")
                          ->check(CLI::IsMember({"persistent", "paper", "detector"}))
                          ->capture_default_str();
+    auto* segment_rule =
+        app_->add_option("--segment-rule", segment_rule_,
+                         "paper pipeline only: count: the segments per axis from N and --cell-population; paper: "
+                         "as many at most, each at least twice the largest box on its axis, as the paper keeps "
+                         "them (WorldSettings::segment_rule)")
+            ->check(CLI::IsMember({"count", "paper"}))
+            ->capture_default_str();
     auto* skin = app_->add_option("--skin", skin_,
                                   "detector only: grow every box by this much on each side and keep the "
                                   "pairs of grown boxes from step to step (DetectorSettings::skin; 0: off)")
@@ -100,15 +107,19 @@ RunCommand::RunCommand(CLI::App& parent)
                    "run over the ranks of an MPI run (mpirun -np P smb run --distributed ...): each rank generates "
                    "the boxes whose id mod P is its rank, smb::mpi detects; the same scene, pairs and check")
         ->excludes(pipeline)
+        ->excludes(segment_rule)
         ->excludes(skin);
 #else
     (void)pipeline;
+    (void)segment_rule;
     (void)skin;
 #endif
 }
 
 int RunCommand::run() const {
     if (skin_ > 0 && pipeline_ != "detector") throw CLI::ValidationError("--skin", "needs --pipeline detector");
+    if (segment_rule_ != "count" && pipeline_ != "paper")
+        throw CLI::ValidationError("--segment-rule", "needs --pipeline paper");
 #ifdef SMB_CLI_HAS_MPI
     if (distributed_) {
         return run_distributed_environment(
@@ -125,6 +136,7 @@ int RunCommand::run_in() const {
     settings.target_cell_population = target_cell_population_;
     settings.threads = threads_;
     settings.pipeline = pipeline_ == "paper" ? Pipeline::paper_lists : Pipeline::persistent_cuts;
+    settings.segment_rule = segment_rule_ == "paper" ? SegmentRule::twice_largest_box : SegmentRule::from_count;
     World<double, Dim> world(settings);
     // The detector reads an array in which each body keeps its index (as an array-based
     // simulation's would: smb/workload/swap_remove_mirror.hpp); keeping it up is the update's time. Its pairs
@@ -144,6 +156,7 @@ int RunCommand::run_in() const {
     run.seed = environment_.seed;
     run.target_cell_population = target_cell_population_;
     run.pipeline = pipeline_;
+    if (pipeline_ == "paper") run.segment_rule = segment_rule_;
     run.skin = skin_;
     run.threads = settings.pipeline == Pipeline::paper_lists || !openmp_enabled() ? 1
                   : threads_ == 0                                                 ? std::thread::hardware_concurrency()

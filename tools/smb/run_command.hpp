@@ -29,6 +29,7 @@ private:
     std::size_t target_cell_population_ = 0;
     std::size_t threads_ = 1;
     std::string pipeline_ = "persistent";
+    std::string segment_rule_ = "count";
     double skin_ = 0;
     std::size_t check_every_ = 0;
     bool no_check_ = false;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <numeric>
@@ -76,6 +77,13 @@ const StepQuantity skin_refreshed = [](const StepRecord& s) { return static_cast
 const StepQuantity copy_time = [](const StepRecord& s) { return s.stats.copy_seconds; };
 StepQuantity level_time(std::size_t level) {
     return [level](const StepRecord& s) { return s.stats.level_seconds[level]; };
+}
+const StepQuantity cell_count = [](const StepRecord& s) { return static_cast<double>(s.stats.cells); };
+const StepQuantity sort_move_count = [](const StepRecord& s) { return static_cast<double>(s.stats.sort_moves); };
+const StepQuantity largest_cell = [](const StepRecord& s) { return static_cast<double>(s.stats.largest_cell_boxes); };
+/// One of DetectStats' per-level counts of the paper's lists, on level `level`.
+StepQuantity level_count(std::array<std::size_t, 3> DetectStats::*counts, std::size_t level) {
+    return [counts, level](const StepRecord& s) { return static_cast<double>((s.stats.*counts)[level]); };
 }
 /// A phase of DetectStats: its key in --json (the field's name without "_seconds"), its label in
 /// the text summary, and its time.
@@ -176,7 +184,8 @@ void print_summary_check(const RunRecord& run, std::ostream& out) {
 void print_text_summary(const RunRecord& run, std::ostream& out) {
     auto line = [&out](std::string_view label, const std::string& text) { print_summary_line(out, label, text); };
     print_summary_heading(run, out);
-    line("pipeline", fmt::format("{}, {} thread{}", run.pipeline, run.threads, run.threads == 1 ? "" : "s"));
+    const std::string rule = run.segment_rule.empty() ? std::string() : ", segment rule " + run.segment_rule;
+    line("pipeline", fmt::format("{}{}, {} thread{}", run.pipeline, rule, run.threads, run.threads == 1 ? "" : "s"));
     if (!run.steps.empty()) {
         const StepRecord& build = run.steps.front();
         line("build (step 1)", fmt::format("{} ({})", duration_text(build.detect_seconds),
@@ -244,6 +253,7 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     summary["seed"] = run.seed;
     summary["target_cell_population"] = run.target_cell_population;
     summary["pipeline"] = run.pipeline;
+    summary["segment_rule"] = run.segment_rule.empty() ? json(nullptr) : json(run.segment_rule);
     summary["threads"] = run.threads;
     summary["skin"] = run.skin;
     if (run.skin > 0 && has_later_steps) {
@@ -272,6 +282,29 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
         summary["level_seconds_median"] = {{"copy", median_after_build(run, copy_time)}, {"levels", levels}};
     } else {
         summary["level_seconds_median"] = nullptr;
+    }
+    // The counts that explain the time: what the sorts moved, how the cut filled the cells, and
+    // for the paper's lists each level's sorting and regrouping (docs/reproduction.md).
+    if (has_later_steps) {
+        json counts = {{"cells", median_after_build(run, cell_count)},
+                       {"sort_moves", median_after_build(run, sort_move_count)}};
+        if (run.pipeline == "paper") {
+            counts["largest_cell_boxes"] = median_after_build(run, largest_cell);
+            json levels = json::object();
+            for (std::size_t level = 0; level < static_cast<std::size_t>(run.dimension); ++level) {
+                levels[std::string(1, level_axis(run.dimension, level))] = {
+                    {"sort_moves", median_after_build(run, level_count(&DetectStats::level_sort_moves, level))},
+                    {"sort_comparisons",
+                     median_after_build(run, level_count(&DetectStats::level_sort_comparisons, level))},
+                    {"singular_items", median_after_build(run, level_count(&DetectStats::level_singular_items, level))},
+                    {"sort_fallback_items",
+                     median_after_build(run, level_count(&DetectStats::level_sort_fallback_items, level))}};
+            }
+            counts["levels"] = levels;
+        }
+        summary["counts_median"] = counts;
+    } else {
+        summary["counts_median"] = nullptr;
     }
     summary["pairs"] = {{"median", median_json(pair_count)},
                         {"last", run.steps.empty() ? 0 : run.steps.back().stats.pairs}};

@@ -52,9 +52,10 @@ struct RunRecord {
     double update_factor = 0;
     std::uint64_t seed = 0;
     std::size_t target_cell_population = 0;
-    std::string pipeline;     ///< "persistent", "paper" or "detector"
-    std::size_t threads = 1;  ///< threads detect() used
-    double skin = 0;          ///< DetectorSettings::skin of the detector (0: none)
+    std::string pipeline;      ///< "persistent", "paper" or "detector"
+    std::string segment_rule;  ///< the paper pipeline's: "count" or "paper"; empty for the others
+    std::size_t threads = 1;   ///< threads detect() used
+    double skin = 0;           ///< DetectorSettings::skin of the detector (0: none)
     std::vector<StepRecord> steps;
     std::size_t bytes_held = 0;  ///< world.bytes_held() after the last step
     /// The process's peak resident memory at the end: the world, the environment that feeds it
