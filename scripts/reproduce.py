@@ -15,7 +15,11 @@ Modes: full (the paper's sizes), quick (N / 10, fewer points; about a minute on 
 smoke (N / 500, seconds; for CI). Sizes scaled below the paper's keep the paper's packing
 densities: the cube side x is scaled by the cube root of the N scale.
 
-Usage: scripts/reproduce.py --mode quick [--smb build/tools/smb/smb] [--out DIR]
+--dim 2 runs experiment 4.1 with squares (E = N((a+b)/2)^2 / x^2); the other two experiments
+set the cube side of the paper's 3D tables and exist in 3D only. --update-factors keeps a subset
+of 4.1's update factors, so that one experiment can be shared among several processes.
+
+Usage: scripts/reproduce.py --mode quick [--smb build/tools/smb/smb] [--out DIR] [--dim 2|3]
 """
 
 import argparse
@@ -57,7 +61,7 @@ MODES = {
 }
 
 FIELDS = [
-    "experiment", "case", "boxes", "boxes_final", "boxes_median", "packing_density", "cube_side",
+    "experiment", "case", "dim", "boxes", "boxes_final", "boxes_median", "packing_density", "cube_side",
     "paper_cube_side", "size_ratio", "update_factor", "seed", "steps_timed", "build_s",
     "step_median_s", "step_min_s", "step_max_s", "step_cpu_median_s", "list_update_s", "sort_s",
     "cut_regroup_s", "check_s", "world_update_s", "pairs_median", "bytes_held", "bytes_per_box",
@@ -73,12 +77,12 @@ def scaled_side(side, scale):
     return side * scale ** (1.0 / 3.0)
 
 
-def plan(mode):
+def plan(mode, update_factors=None):
     """Every configuration of the mode: (experiment, case label, smb run arguments, extra CSV fields)."""
     settings = MODES[mode]
     scale = settings["scale"]
     runs = []
-    for update_factor in settings["update_factors"]:
+    for update_factor in update_factors or settings["update_factors"]:
         for thousands in settings["table1"]:
             density, ratio = TABLE1[thousands]
             boxes = scaled_boxes(thousands * 1000, scale)
@@ -127,7 +131,7 @@ def csv_row(experiment, case, extra, summary, wall, load):
     peak = summary.get("peak_rss_bytes")
     check = summary["check"]
     return {
-        "experiment": experiment, "case": case,
+        "experiment": experiment, "case": case, "dim": summary["dimension"],
         "boxes": boxes["initial"], "boxes_final": boxes["final"], "boxes_median": boxes["median"],
         "packing_density": summary["packing_density"], "cube_side": summary["cube_side"],
         "paper_cube_side": extra["paper_cube_side"], "size_ratio": summary["size_ratio"],
@@ -189,6 +193,10 @@ def main():
     parser.add_argument("--steps", type=int, default=0, help="timed steps after the build step (default: the mode's)")
     parser.add_argument("--experiments", default="4.1,4.2,4.3", help="comma-separated subset")
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--dim", type=int, choices=(2, 3), default=3,
+                        help="dimension of the boxes (2: experiment 4.1 only)")
+    parser.add_argument("--update-factors", default="",
+                        help="comma-separated subset of experiment 4.1's update factors (default: the mode's)")
     parser.add_argument("--check", action="store_true",
                         help="check each run's last step against the grid reference (its grid then counts in "
                              "the peak memory)")
@@ -205,7 +213,13 @@ def main():
     settings = MODES[args.mode]
     steps = args.steps or settings["steps"]
     wanted = set(args.experiments.split(","))
-    runs = [run for run in plan(args.mode) if run[0] in wanted]
+    if args.dim == 2 and wanted - {"4.1"}:
+        sys.exit("reproduce.py: --dim 2 runs experiment 4.1 only (4.2 and 4.3 set the paper's 3D cube sides)")
+    try:
+        update_factors = [float(text) for text in args.update_factors.split(",")] if args.update_factors else None
+    except ValueError:
+        sys.exit(f"reproduce.py: --update-factors {args.update_factors!r} is not a list of numbers")
+    runs = [run for run in plan(args.mode, update_factors) if run[0] in wanted]
     if not runs:
         sys.exit(f"reproduce.py: no experiment among {args.experiments}")
     order = list(range(len(runs)))
@@ -215,7 +229,8 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     rows = {experiment: [None] * len(runs) for experiment in wanted}
     meta = {
-        "mode": args.mode, "scale": settings["scale"], "steps_timed": steps, "seed": args.seed,
+        "mode": args.mode, "scale": settings["scale"], "steps_timed": steps, "seed": args.seed, "dim": args.dim,
+        "pipeline": args.pipeline,
         "reference_check": args.check, "order": "listed" if args.listed_order else "shuffled",
         "commit": git_commit(), "machine": machine_description(), "load_1min_start": load_average(),
         "started": time.strftime("%Y-%m-%d %H:%M:%S %z"), "runs": len(runs),
@@ -225,7 +240,8 @@ def main():
     mismatches = 0
     for done_count, index in enumerate(order, start=1):
         experiment, case, arguments, extra = runs[index]
-        command, summary, wall, load = run_one(args.smb, arguments + ["--pipeline", args.pipeline], steps,
+        command, summary, wall, load = run_one(args.smb, arguments + ["--pipeline", args.pipeline,
+                                                                 "--dim", str(args.dim)], steps,
                                                args.seed, args.check,
                                                settings["timeout"])
         row = csv_row(experiment, case, extra, summary, wall, load)
