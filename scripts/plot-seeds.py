@@ -118,7 +118,7 @@ def figure_time(runs, folder, subtitle, written, per_box):
     for panel, pipeline in zip(axes[0], PIPELINES):
         panel.set_title(PIPELINE_TITLES[pipeline], fontsize=10)
         for marker, (factor, seeds) in zip(MARKERS, sorted(runs.get(pipeline, {}).items())):
-            values = stacked(seeds, "step_median_s", "boxes_median") * 1e6 if per_box else stacked(seeds, "step_median_s")
+            values = stacked(seeds, "step_median_s", "boxes_median" if per_box else None) * (1e6 if per_box else 1)
             draw_spread(panel, nominal_boxes(seeds) / 1e3, values, marker, f"Λ = {factor:g}")
         panel.legend(title="median of seeds; bars: min–max", fontsize=8, title_fontsize=8, ncol=3,
                      loc="upper left")
@@ -196,8 +196,9 @@ def at_boxes(seeds, boxes, key, per_box):
 
 def summary_lines(runs, source):
     seed_names = sorted({seed for pipeline in runs.values() for seeds in pipeline.values() for seed in seeds})
-    steps = sorted({int(row["steps_timed"]) for p in runs.values() for s in p.values() for r in s.values() for row in r})
-    loads = [row["load_1min"] for p in runs.values() for s in p.values() for r in s.values() for row in r]
+    all_rows = [row for p in runs.values() for s in p.values() for rows in s.values() for row in rows]
+    steps = sorted({int(row["steps_timed"]) for row in all_rows})
+    loads = [row["load_1min"] for row in all_rows]
     lines = ["# Section 4.1 over several seeds, both pipelines: fits and spreads\n",
              f"Written by scripts/plot-seeds.py from {source}: seeds {', '.join(map(str, seed_names))}, "
              f"{'/'.join(map(str, steps))} timed steps after the build step per run, the 1-minute load average "
@@ -249,7 +250,8 @@ def summary_lines(runs, source):
             cells = [pipeline, f"{factor:g}"]
             for key in ("sort_s", "cut_regroup_s", "check_s"):
                 cells.append(f"{np.median(at_boxes(seeds, 1_000_000, key, 'boxes_median')) * 1e6:.3f}")
-            cpu = at_boxes(seeds, 1_000_000, "step_cpu_median_s", None) / at_boxes(seeds, 1_000_000, "step_median_s", None)
+            cpu = (at_boxes(seeds, 1_000_000, "step_cpu_median_s", None)
+                   / at_boxes(seeds, 1_000_000, "step_median_s", None))
             cells.append(f"{np.median(cpu):.3f}")
             lines.append("| " + " | ".join(cells) + " |")
     return lines
