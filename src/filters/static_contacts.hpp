@@ -85,6 +85,7 @@ public:
         if (dead_ > 4096 && 2 * dead_ > copies_.size()) close_up();
         const double skin_floor = 0.125 * grid.smallest_cell_side();
         for (std::size_t i = 0; i < boxes.size(); ++i) {
+            if (i + kAhead < boxes.size()) prefetch_range(entries_[i + kAhead]);
             const box_type& box = boxes[i];
             Entry& e = entries_[i];
             if (!e.valid || !inside(box, e.fat)) refresh(e, box, info[i].filter, grid, skin_floor);
@@ -181,6 +182,18 @@ private:
         }
         e.count = static_cast<std::uint32_t>(found_.size());
         e.valid = true;
+    }
+
+    /// Boxes ahead whose copies are asked for before their test. The reading of the copies
+    /// stalled on memory although the ranges mostly follow each other (on the paper's
+    /// environment, 100k moving boxes among 1M statics: 10.9 ms a step for this part without,
+    /// 8.5 to 9.0 with, two to eight boxes ahead alike).
+    static constexpr std::size_t kAhead = 4;
+
+    void prefetch_range(const Entry& e) const noexcept {
+        const char* from = reinterpret_cast<const char*>(copies_.data() + e.offset);
+        const char* to = reinterpret_cast<const char*>(copies_.data() + e.offset + e.count);
+        for (const char* p = from; p < to; p += 64) __builtin_prefetch(p);
     }
 
     /// Copies the live ranges into a fresh pool in the boxes' order.
