@@ -17,6 +17,7 @@
 // scale matter only for how often the test cannot tell, never for its answers; a fat box with no
 // finite, positive extent on an axis maps every value on it to 0 (the test cannot tell there).
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <concepts>
@@ -33,18 +34,29 @@ namespace smb::detail {
 template <int Dim>
 using QuantBox = std::array<std::int16_t, 2 * Dim>;
 
-/// The lattice over one fat box (an outward float copy, float_bounds.hpp).
+/// The lattice over one fat box (an outward float copy, float_bounds.hpp), with the scales
+/// scales(fat) chose for it (kept beside the fat box, so that a step does not divide again).
 template <int Dim>
 class Lattice {
 public:
     static constexpr double kTop = 32767;
 
-    explicit Lattice(const FloatBox<Dim>& fat) noexcept {
+    /// Lattice steps per unit on each axis: kTop over the fat box's side, as a float (any
+    /// positive value serves, the same for the copies and the tested box).
+    [[nodiscard]] static std::array<float, Dim> scales(const FloatBox<Dim>& fat) noexcept {
+        std::array<float, Dim> scale{};
+        for (int k = 0; k < Dim; ++k) {
+            const double range = -static_cast<double>(fat.v[Dim + k]) - static_cast<double>(fat.v[k]);
+            const auto s = static_cast<float>(std::min(kTop / range, 1e30));
+            scale[k] = range > 0 && std::isfinite(range) && s > 0 ? s : 0;
+        }
+        return scale;
+    }
+
+    Lattice(const FloatBox<Dim>& fat, const std::array<float, Dim>& scale) noexcept {
         for (int k = 0; k < Dim; ++k) {
             origin_[k] = static_cast<double>(fat.v[k]);
-            const double range = -static_cast<double>(fat.v[Dim + k]) - origin_[k];
-            const double scale = kTop / range;
-            scale_[k] = range > 0 && std::isfinite(range) && std::isfinite(scale) ? scale : 0;
+            scale_[k] = static_cast<double>(scale[k]);
         }
     }
 
@@ -93,10 +105,17 @@ public:
     static_assert(Dim == 2 || Dim == 3);
 
     explicit QuantOverlap(const QuantBox<Dim>& q) noexcept {
-        for (int lane = 0; lane < 8; ++lane) {
-            query_[lane] = lane < 2 * Dim ? q[lane] : std::numeric_limits<std::int16_t>::max();
-            used_[lane] = lane < 2 * Dim ? -1 : 0;
-            unused_low_[lane] = lane < 2 * Dim ? 0 : std::numeric_limits<std::int16_t>::min();
+        // Built as one vector (lane by lane through memory, it stalled the first test).
+        constexpr std::int16_t kMax = std::numeric_limits<std::int16_t>::max();
+        constexpr std::int16_t kMin = std::numeric_limits<std::int16_t>::min();
+        if constexpr (Dim == 3) {
+            query_ = Shorts{q[0], q[1], q[2], q[3], q[4], q[5], kMax, kMax};
+            used_ = Shorts{-1, -1, -1, -1, -1, -1, 0, 0};
+            unused_low_ = Shorts{0, 0, 0, 0, 0, 0, kMin, kMin};
+        } else {
+            query_ = Shorts{q[0], q[1], q[2], q[3], kMax, kMax, kMax, kMax};
+            used_ = Shorts{-1, -1, -1, -1, 0, 0, 0, 0};
+            unused_low_ = Shorts{0, 0, 0, 0, kMin, kMin, kMin, kMin};
         }
     }
 

@@ -92,7 +92,7 @@ public:
             if (hits_.size() < e.count) hits_.resize(e.count);
             // The hits first, without a branch per static (a quarter of them hit: a branch
             // would be mispredicted often); then their report, in order.
-            const Lattice<Dim> lattice(e.fat);
+            const Lattice<Dim> lattice(e.fat, e.scale);
             const QuantOverlap<Dim> test(lattice.query(box));
             const Copy* first = copies_.data() + e.offset;
             std::uint32_t found = 0;
@@ -136,7 +136,8 @@ private:
     static_assert(sizeof(Copy) >= 16);
 
     struct Entry {
-        FloatBox<Dim> fat{};  // outward: the grid was asked for the statics overlapping it
+        FloatBox<Dim> fat{};             // outward: the grid was asked for the statics overlapping it
+        std::array<float, Dim> scale{};  // its lattice's (quantized_bounds.hpp)
         std::size_t offset = 0;
         std::uint32_t count = 0;
         std::uint32_t room = 0;  // pool entries the range holds, count of them in use
@@ -174,7 +175,8 @@ private:
             copies_.resize(copies_.size() + e.room);
             indices_.resize(indices_.size() + e.room);
         }
-        const Lattice<Dim> lattice(e.fat);
+        e.scale = Lattice<Dim>::scales(e.fat);
+        const Lattice<Dim> lattice(e.fat, e.scale);
         for (std::size_t j = 0; j < found_.size(); ++j) {
             const std::uint32_t s = found_[j];
             copies_[e.offset + j] = Copy(lattice.copy(grid.box(s)), grid.id(s));
