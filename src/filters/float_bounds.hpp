@@ -1,24 +1,17 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Float copies of boxes that bound them, and an overlap test on them that is exact or says it
-// cannot tell. The statics a moving box caches are tested at every step: as 2 * Dim floats a
-// static is 24 bytes (3D) where a Box<double, 3> is 48, and its test is two vector compares
-// (GCC vector extensions, SSE on the baseline x86-64) instead of twelve scalar ones.
-//
-// A copy is rounded outward (min down, max up), a tested box inward: a float test that fails is
-// then a certain miss, one that passes with room to spare on every axis a certain hit, and only
-// a boundary that falls within one float of the other's (rare) needs the exact boxes. A copy
-// holds (min, -max) and a tested box (max, -min), so that every lane asks the same question,
-// copy <= box: min_k <= box.max_k, and -max_k <= -box.min_k (negation is exact).
+// Float boxes that bound a box (its outward copy: min rounded down, max rounded up), and
+// whether a box lies inside one. A moving box's fat box (static_contacts.hpp) is such a copy:
+// the region the statics' grid is asked for and the box is kept inside of, the same region
+// exactly, and the span of the lattice its cached statics are held on (quantized_bounds.hpp).
+// A copy holds (min, -max), so that one comparison direction serves both sides of an axis.
 
 #include <array>
 #include <bit>
 #include <concepts>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 
-#include "cuts/float_lanes.hpp"
 #include "smb/box.hpp"
 
 namespace smb::detail {
@@ -51,7 +44,7 @@ template <std::floating_point Real>
     return -float_down<Real>(-x);
 }
 
-/// A box as 2 * Dim floats in one of the two layouts above.
+/// A box as 2 * Dim floats: (min, -max).
 template <int Dim>
 struct FloatBox {
     std::array<float, 2 * Dim> v{};
@@ -64,17 +57,6 @@ template <std::floating_point Real, int Dim>
     for (int k = 0; k < Dim; ++k) {
         f.v[k] = float_down(box.min[k]);
         f.v[Dim + k] = -float_up(box.max[k]);
-    }
-    return f;
-}
-
-/// The tested box: (down(max), -up(min)), which it contains.
-template <std::floating_point Real, int Dim>
-[[nodiscard]] FloatBox<Dim> inward_query(const Box<Real, Dim>& box) noexcept {
-    FloatBox<Dim> f;
-    for (int k = 0; k < Dim; ++k) {
-        f.v[k] = float_down(box.max[k]);
-        f.v[Dim + k] = -float_up(box.min[k]);
     }
     return f;
 }
@@ -101,43 +83,5 @@ template <std::floating_point Real, int Dim>
     }
     return in != 0;
 }
-
-/// Compares the outward copy s of a box S with the inward query q of a box Q (closed overlap):
-/// bit 0 of the result is set when they may overlap (clear: certainly not), bit 1 when they
-/// certainly do. Why: s.min = down(S.min) is at most S.min, and S.min is below the float after
-/// s.min; q.max = down(Q.max) is the largest float at most Q.max. So S.min <= Q.max implies
-/// s.min <= q.max, and s.min < q.max (floats) implies S.min < next(s.min) <= q.max <= Q.max;
-/// the same on the other side and every axis. No branch: a quarter of the cached statics
-/// overlap, too many for a branch to be predicted.
-class FloatOverlap {
-public:
-    template <int Dim>
-    explicit FloatOverlap(const FloatBox<Dim>& q) noexcept {
-        static_assert(Dim == 2 || Dim == 3);
-        std::memcpy(&low_, q.v.data(), sizeof(Floats));
-        std::memcpy(&high_, q.v.data() + (2 * Dim - 4), sizeof(Floats));
-    }
-
-    /// Lanes 0..3 and 2 * Dim - 4 .. 2 * Dim - 1 cover the 2 * Dim floats (overlapping in 3D).
-    template <int Dim>
-    [[nodiscard]] unsigned test(const FloatBox<Dim>& s) const noexcept {
-        Floats low;
-        Floats high;
-        std::memcpy(&low, s.v.data(), sizeof(Floats));
-        std::memcpy(&high, s.v.data() + (2 * Dim - 4), sizeof(Floats));
-        const Masks maybe = (low <= low_) & (high <= high_);
-        const Masks surely = (low < low_) & (high < high_);
-        return static_cast<unsigned>(all(maybe)) | static_cast<unsigned>(all(surely)) << 1;
-    }
-
-private:
-    using Floats = FloatLanes<4>::Floats;
-    using Masks = FloatLanes<4>::Masks;
-
-    [[nodiscard]] static bool all(const Masks& m) noexcept { return lane_bits<4>(m) == 0xFU; }
-
-    Floats low_;
-    Floats high_;
-};
 
 }  // namespace smb::detail

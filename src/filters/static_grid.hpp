@@ -1,11 +1,16 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The static boxes of a World, copied once, and a uniform grid over them (cells in CSR form:
-// each cell's static indices contiguous) that finds the statics overlapping a query box. It is
-// built when the statics change and read by every moving box that left its fat box
-// (static_contacts.hpp). A static that would span more than kMaxSpan cells on some axis (a
-// floor under a pile of grains) is kept apart and tested by every query, so that one large box
-// cannot fill the grid with millions of entries.
+// The static boxes of a World, copied once, and a uniform grid over them that finds the statics
+// overlapping a query box. It is built when the statics change and read by every moving box
+// that left its fat box (static_contacts.hpp). The statics are sorted by the cell of their lower
+// corner (their home cell). A small static (no wider than a cell on any axis, most of them, as
+// cells are about twice the mean static) is found through its home cell alone: a query visits
+// the home cells from its lower corner less the widest small static up to its upper corner, and
+// on each row of cells along the first axis those statics are one contiguous run of the sorted
+// array, read in order, each static once. A wider static is listed in every cell it covers
+// (cells in CSR form) and reported from one of them. A static that would span more than
+// kMaxSpan cells on some axis (a floor under a pile of grains) is kept apart and tested by every
+// query, so that one large box cannot fill the grid with millions of entries.
 
 #include <algorithm>
 #include <array>
@@ -42,30 +47,36 @@ public:
         filters_ = std::move(filters);
         start_.clear();
         items_.clear();
+        home_start_.clear();
         oversized_.clear();
+        reach_.fill(0);
         if (boxes_.empty()) return;
         choose_cells();
         order_by_home_cell();
-        // Two passes over the statics: count per cell, then place (CSR).
+        // The wider statics, listed in every cell they cover: two passes, count per cell, then
+        // place (CSR).
         start_.assign(cell_count_ + 1, 0);
-        std::vector<std::uint8_t> gridded(boxes_.size(), 0);
-        for (std::size_t i = 0; i < boxes_.size(); ++i) {
+        const std::size_t wider = home_start_[cell_count_];
+        for (std::size_t i = wider; i < boxes_.size(); ++i) {
             std::array<std::size_t, Dim> lo{}, hi{};
             span_of(boxes_[i], lo, hi);
-            bool small = true;
-            for (int k = 0; k < Dim; ++k) small = small && hi[k] - lo[k] < kMaxSpan;
-            if (!small) {
+            bool listed = true;
+            for (int k = 0; k < Dim; ++k) listed = listed && hi[k] - lo[k] < kMaxSpan;
+            if (!listed) {
                 oversized_.push_back(static_cast<std::uint32_t>(i));
                 continue;
             }
-            gridded[i] = 1;
             for_cells(lo, hi, [&](std::size_t cell, const std::array<std::size_t, Dim>&) { ++start_[cell + 1]; });
         }
         for (std::size_t c = 0; c < cell_count_; ++c) start_[c + 1] += start_[c];
         items_.resize(start_[cell_count_]);
         std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-        for (std::size_t i = 0; i < boxes_.size(); ++i) {
-            if (gridded[i] == 0) continue;
+        std::size_t next_oversized = 0;
+        for (std::size_t i = wider; i < boxes_.size(); ++i) {
+            if (next_oversized < oversized_.size() && oversized_[next_oversized] == i) {
+                ++next_oversized;
+                continue;
+            }
             std::array<std::size_t, Dim> lo{}, hi{};
             span_of(boxes_[i], lo, hi);
             for_cells(lo, hi, [&](std::size_t cell, const std::array<std::size_t, Dim>&) {
@@ -83,6 +94,30 @@ public:
         }
         std::array<std::size_t, Dim> lo{}, hi{};
         span_of(query, lo, hi);
+        // The small statics, by home cell. A static that overlaps the query has its lower
+        // corner at least query.min - reach on every axis; `from` is rounded down from that, so
+        // the cell of the static's corner is at least the cell of `from` (cell_on never
+        // decreases).
+        std::array<std::size_t, Dim> from{};
+        for (int k = 0; k < Dim; ++k)
+            from[k] = cell_on(k, std::nextafter(static_cast<double>(query.min[k]) - reach_[k], -INFINITY));
+        const auto run = [&](std::size_t first_cell, std::size_t last_cell) {
+            for (std::uint32_t i = home_start_[first_cell]; i < home_start_[last_cell + 1]; ++i) {
+                if (overlaps(boxes_[i], query)) found(i);
+            }
+        };
+        if constexpr (Dim == 2) {
+            for (std::size_t y = from[1]; y <= hi[1]; ++y) run(y * cells_[0] + from[0], y * cells_[0] + hi[0]);
+        } else {
+            for (std::size_t z = from[2]; z <= hi[2]; ++z) {
+                for (std::size_t y = from[1]; y <= hi[1]; ++y) {
+                    const std::size_t row = (z * cells_[1] + y) * cells_[0];
+                    run(row + from[0], row + hi[0]);
+                }
+            }
+        }
+        if (items_.empty()) return;
+        // The wider statics, through every cell they cover.
         for_cells(lo, hi, [&](std::size_t cell, const std::array<std::size_t, Dim>& at) {
             for (std::uint32_t e = start_[cell]; e < start_[cell + 1]; ++e) {
                 const std::uint32_t i = items_[e];
@@ -100,25 +135,45 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return boxes_.capacity() * sizeof(box_type) + ids_.capacity() * sizeof(BoxId) +
                filters_.capacity() * sizeof(Filter) +
-               (start_.capacity() + items_.capacity() + oversized_.capacity()) * sizeof(std::uint32_t);
+               (start_.capacity() + items_.capacity() + home_start_.capacity() + oversized_.capacity()) *
+                   sizeof(std::uint32_t);
     }
 
 private:
-    /// Sorts the statics by the cell of their lower corner (a counting sort), so that a cell's
-    /// entries, and the entries of neighbouring cells, are runs of neighbouring statics: a
-    /// query then reads the statics' boxes nearly in order instead of one cache miss each.
+    /// Whether a static is small: no wider than a cell on any axis (any width on an axis of one
+    /// cell).
+    [[nodiscard]] bool small(const box_type& b) const noexcept {
+        bool fits = true;
+        for (int k = 0; k < Dim; ++k) {
+            const double width = static_cast<double>(b.max[k]) - static_cast<double>(b.min[k]);
+            fits = fits && (cells_[k] == 1 || width * inverse_side_[k] <= 1);
+        }
+        return fits;
+    }
+
+    /// Sorts the small statics by home cell (a counting sort), the others after them, and sets
+    /// home_start_ (cell c's small statics are [home_start_[c], home_start_[c + 1])) and reach_
+    /// (at least the widest small static on each axis).
     void order_by_home_cell() {
         std::vector<std::size_t> home(boxes_.size());
-        std::vector<std::size_t> first(cell_count_ + 1, 0);
+        std::vector<std::size_t> first(cell_count_ + 2, 0);
         for (std::size_t i = 0; i < boxes_.size(); ++i) {
-            std::array<std::size_t, Dim> lo{}, hi{};
-            span_of(boxes_[i], lo, hi);
-            std::size_t cell = 0;
-            for_cells(lo, lo, [&](std::size_t c, const std::array<std::size_t, Dim>&) { cell = c; });
+            const box_type& b = boxes_[i];
+            std::size_t cell = cell_count_;  // the bucket of the wider statics, last
+            if (small(b)) {
+                std::array<std::size_t, Dim> lo{}, hi{};
+                span_of(b, lo, hi);
+                for_cells(lo, lo, [&](std::size_t c, const std::array<std::size_t, Dim>&) { cell = c; });
+                for (int k = 0; k < Dim; ++k) {
+                    const double width = static_cast<double>(b.max[k]) - static_cast<double>(b.min[k]);
+                    reach_[k] = std::max(reach_[k], std::nextafter(width, INFINITY));
+                }
+            }
             home[i] = cell;
             ++first[cell + 1];
         }
-        for (std::size_t c = 0; c < cell_count_; ++c) first[c + 1] += first[c];
+        for (std::size_t c = 0; c <= cell_count_; ++c) first[c + 1] += first[c];
+        home_start_.assign(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(cell_count_) + 1);
         std::vector<box_type> boxes(boxes_.size());
         std::vector<BoxId> ids(ids_.size());
         std::vector<Filter> filters(filters_.size());
@@ -181,7 +236,7 @@ private:
         if (!std::isfinite(smallest_side_)) smallest_side_ = 0;
     }
 
-    [[nodiscard]] std::size_t cell_on(int k, Real x) const noexcept {
+    [[nodiscard]] std::size_t cell_on(int k, double x) const noexcept {
         const double t = (static_cast<double>(x) - origin_[k]) * inverse_side_[k];
         if (!(t > 0)) return 0;
         const double top = static_cast<double>(cells_[k] - 1);
@@ -219,7 +274,9 @@ private:
     std::array<std::size_t, Dim> cells_{};
     std::size_t cell_count_ = 0;
     double smallest_side_ = 0;
-    std::vector<std::uint32_t> start_;  // cell c's entries are items_[start_[c], start_[c + 1])
+    std::vector<std::uint32_t> home_start_;  // the small statics by home cell (see order_by_home_cell)
+    std::array<double, Dim> reach_{};        // at least the widest small static, per axis
+    std::vector<std::uint32_t> start_;       // the wider statics: cell c's are items_[start_[c], start_[c + 1])
     std::vector<std::uint32_t> items_;
     std::vector<std::uint32_t> oversized_;
 };
