@@ -2,7 +2,9 @@
 #pragma once
 // What the broad phase keeps per proxy beside Bullet's own fields.
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "smb/box.hpp"
@@ -32,7 +34,24 @@ struct Broadphase::Proxy : btBroadphaseProxy {
     std::vector<std::uint32_t> partners;
 };
 
+// Here, inline: every pass over the candidates and the proxies asks it.
+inline Broadphase::Proxy* Broadphase::live(BoxId id) const noexcept {
+    if (id >= slots_.size()) return nullptr;
+    Proxy* proxy = slots_[id].get();
+    return proxy != nullptr && proxy->alive ? proxy : nullptr;
+}
+
 namespace detail {
+
+/// marks_: the id is listed in fresh_, in stale_.
+inline constexpr std::uint8_t fresh_mark = 1;
+inline constexpr std::uint8_t stale_mark = 2;
+
+/// (a, b) order of candidates, the order of the pairs of smb's events.
+[[nodiscard]] inline bool comes_before(std::uint32_t a0, std::uint32_t b0, std::uint32_t a1,
+                                       std::uint32_t b1) noexcept {
+    return a0 != a1 ? a0 < a1 : b0 < b1;
+}
 
 /// Static and kinematic objects as btCollisionWorld files them (group StaticFilter, mask every bit
 /// but StaticFilter), and any proxy whose group holds only StaticFilter and KinematicFilter bits
@@ -50,6 +69,29 @@ namespace detail {
 
 [[nodiscard]] inline Box<float, 3> box_of(const btVector3& min, const btVector3& max) noexcept {
     return Box<float, 3>{{min.x(), min.y(), min.z()}, {max.x(), max.y(), max.z()}};
+}
+
+/// The box grown by `skin` on every side. Rounding is monotone, so it holds the box.
+[[nodiscard]] inline Box<float, 3> grown(const Box<float, 3>& box, float skin) noexcept {
+    Box<float, 3> fat = box;
+    for (int k = 0; k < 3; ++k) {
+        fat.min[k] -= skin;
+        fat.max[k] += skin;
+    }
+    return fat;
+}
+
+/// A box that overlaps no box (min > max on every axis): a destroyed proxy's.
+[[nodiscard]] inline Box<float, 3> empty_box() noexcept {
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    return Box<float, 3>{{inf, inf, inf}, {-inf, -inf, -inf}};
+}
+
+inline void erase_partner(std::vector<std::uint32_t>& partners, std::uint32_t id) {
+    const auto at = std::find(partners.begin(), partners.end(), id);
+    if (at == partners.end()) return;
+    *at = partners.back();
+    partners.pop_back();
 }
 
 /// The box, or InvalidBoxError naming `what` when it has NaN, infinity or min > max.
