@@ -22,6 +22,10 @@ constexpr std::uint32_t steps_before_static = 8;
 
 }  // namespace
 
+void detail::throw_unknown_proxy() {
+    throw UnknownIdError("smb::bullet::Broadphase: the proxy was not created by this broad phase, or was destroyed");
+}
+
 Box<float, 3> detail::checked_box(const btVector3& min, const btVector3& max, const char* what) {
     const Box<float, 3> box = box_of(min, max);
     if (!is_valid(box)) {
@@ -43,14 +47,6 @@ Broadphase::Broadphase(const WorldSettings& settings, btOverlappingPairCache* pa
 }
 
 Broadphase::~Broadphase() = default;
-
-Broadphase::Proxy& Broadphase::own(const btBroadphaseProxy* proxy) const {
-    if (proxy != nullptr && proxy->m_uniqueId >= 0) {
-        const auto id = static_cast<std::size_t>(proxy->m_uniqueId);
-        if (id < slots_.size() && slots_[id].get() == proxy && slots_[id]->alive) return *slots_[id];
-    }
-    throw UnknownIdError("smb::bullet::Broadphase: the proxy was not created by this broad phase, or was destroyed");
-}
 
 btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVector3& aabbMax, int /*shapeType*/,
                                            void* userPtr, int collisionFilterGroup, int collisionFilterMask,
@@ -88,7 +84,6 @@ btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVec
     proxy.filter = Filter{};
     proxy.calm_steps = 0;
     proxy.alive = true;
-    proxy.moved = false;
     proxy.static_class = false;
     proxy.held_static = false;
     proxy.restless = false;
@@ -143,9 +138,11 @@ void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, con
     // costs nothing further.
     if (own_proxy.m_aabbMin == aabbMin && own_proxy.m_aabbMax == aabbMax) return;
     const auto id = static_cast<std::uint32_t>(own_proxy.m_uniqueId);
-    if (!own_proxy.moved) {
+    // Inside its fat box the box changes nothing in the World; flush_moves looks again at those
+    // that left it (they may come back before it).
+    if ((marks_[id] & detail::moved_mark) == 0 && !detail::contains(fat_boxes_[id], box)) {
         moved_.push_back(id);
-        own_proxy.moved = true;
+        marks_[id] |= detail::moved_mark;
     }
     own_proxy.m_aabbMin = aabbMin;
     own_proxy.m_aabbMax = aabbMax;
@@ -232,13 +229,13 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
     // those the cache holds); a filter callback may change its mind at any step, so it is asked
     // at every one.
     const std::size_t fresh_limit = std::max<std::size_t>(64, live_ / 16);
-    bool detected = false;
+    bool tested = false;
     if (changed_ || fresh_.size() > fresh_limit) {
         pairs_.clear();
         world_.detect(pairs_, events_);
         const std::size_t retired_before = retired_ids_.size();
         changed_ = false;
-        detected = true;
+        tested = true;
         if (incremental_) {
             reconcile_candidates(dispatcher);
         } else {
@@ -246,8 +243,8 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
         }
         incremental_ = false;
         index_current_ = false;
-        for (const std::uint32_t id : fresh_) marks_[id] = 0;
-        for (const std::uint32_t id : stale_) marks_[id] = 0;
+        for (const std::uint32_t id : fresh_) marks_[id] &= detail::moved_mark;
+        for (const std::uint32_t id : stale_) marks_[id] &= detail::moved_mark;
         fresh_.clear();
         stale_.clear();
         // The events named the ids destroyed before the detection for the last time.
@@ -257,12 +254,10 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
     } else if (!fresh_.empty()) {
         update_fresh_candidates(dispatcher);
         incremental_ = true;
-        detected = true;
+        tested = true;
     }
-    if (detected || boxes_changed_ || callback_mode_) {
-        boxes_changed_ = false;
-        test_candidates(dispatcher);
-    }
+    if (!tested && (boxes_changed_ || callback_mode_)) test_candidates(dispatcher);
+    boxes_changed_ = false;
     settle_restless_statics();
 }
 

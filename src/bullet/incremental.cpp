@@ -59,6 +59,9 @@ void Broadphase::update_fresh_candidates(btDispatcher* dispatcher) {
         found_.push_back(Candidate{std::min(a, b), std::max(a, b), Held::apart});
     };
     found_.clear();
+    // The stale boxes side by side, read once per fresh box.
+    stale_boxes_.clear();
+    for (const std::uint32_t id : stale_) stale_boxes_.push_back(fat_boxes_[id]);
     for (const std::uint32_t fresh : fresh_) {
         const Box<float, 3> fat = fat_boxes_[fresh];
         index_.query(fat, hits_);
@@ -67,56 +70,71 @@ void Broadphase::update_fresh_candidates(btDispatcher* dispatcher) {
             if (other == fresh || (marks_[other] & detail::stale_mark) != 0) continue;
             if (pass(fresh, other)) found(fresh, other);
         }
-        for (const std::uint32_t other : stale_) {
-            if (other != fresh && overlaps(fat, fat_boxes_[other]) && pass(fresh, other)) found(fresh, other);
+        for (std::size_t i = 0; i < stale_.size(); ++i) {
+            if (!overlaps(fat, stale_boxes_[i])) continue;
+            const std::uint32_t other = stale_[i];
+            if (other != fresh && pass(fresh, other)) found(fresh, other);
         }
     }
     // Two fresh boxes find each other twice.
     std::sort(found_.begin(), found_.end(), comes_before<Candidate>);
     found_.erase(std::unique(found_.begin(), found_.end(), same_pair<Candidate>), found_.end());
 
-    // The candidates with a fresh end are those found; the others keep their standing.
-    merged_.clear();
-    merged_.reserve(candidates_.size() + found_.size());
-    std::size_t next = 0;
-    for (const Candidate& candidate : candidates_) {
-        while (next < found_.size() && comes_before(found_[next], candidate)) merged_.push_back(found_[next++]);
-        if (next < found_.size() && same_pair(found_[next], candidate)) {
-            ++next;
-            merged_.push_back(candidate);
-            continue;
+    // The candidates with a fresh end are those found; the others keep their standing. In place,
+    // each candidate tested as it is met: one pass, and those found anew go to the end (the list
+    // is sorted again before the next detection's merge, reconcile_candidates).
+    found_seen_.assign(found_.size(), 0);
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < candidates_.size(); ++i) {
+        const Candidate candidate = candidates_[i];
+        if (((marks_[candidate.a] | marks_[candidate.b]) & detail::fresh_mark) != 0) {
+            const auto at = std::lower_bound(found_.begin(), found_.end(), candidate, comes_before<Candidate>);
+            if (at == found_.end() || !same_pair(*at, candidate)) {
+                if (candidate.held != Held::held) continue;
+                // A callback of the cache may have destroyed a proxy on the way, its pairs with it.
+                Proxy* a = live(candidate.a);
+                Proxy* b = live(candidate.b);
+                if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+                continue;
+            }
+            found_seen_[static_cast<std::size_t>(at - found_.begin())] = 1;
         }
-        if (((marks_[candidate.a] | marks_[candidate.b]) & detail::fresh_mark) == 0) {
-            merged_.push_back(candidate);
-            continue;
-        }
-        if (candidate.held != Held::held) continue;
-        // A callback of the cache may have destroyed a proxy on the way, its pairs with it.
-        Proxy* a = live(candidate.a);
-        Proxy* b = live(candidate.b);
-        if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+        candidates_[kept] = candidate;
+        test_candidate(candidates_[kept], dispatcher);
+        ++kept;
     }
-    while (next < found_.size()) merged_.push_back(found_[next++]);
-    candidates_.swap(merged_);
+    candidates_.resize(kept);
+    for (std::size_t i = 0; i < found_.size(); ++i) {
+        if (found_seen_[i] != 0) continue;
+        candidates_.push_back(found_[i]);
+        test_candidate(candidates_.back(), dispatcher);
+        candidates_sorted_ = false;
+    }
     for (const std::uint32_t id : fresh_) marks_[id] &= static_cast<std::uint8_t>(~detail::fresh_mark);
     fresh_.clear();
 }
 
 void Broadphase::reconcile_candidates(btDispatcher* dispatcher) {
     std::sort(pairs_.begin(), pairs_.end());
+    if (!candidates_sorted_) std::sort(candidates_.begin(), candidates_.end(), comes_before<Candidate>);
+    candidates_sorted_ = true;
     merged_.clear();
     merged_.reserve(pairs_.size());
+    const auto keep = [this, dispatcher](const Candidate& candidate) {
+        merged_.push_back(candidate);
+        test_candidate(merged_.back(), dispatcher);
+    };
     std::size_t next = 0;
     const auto candidate_of = [](const Pair& pair) {
         return Candidate{static_cast<std::uint32_t>(pair.a), static_cast<std::uint32_t>(pair.b), Held::apart};
     };
     for (const Candidate& candidate : candidates_) {
         while (next < pairs_.size() && comes_before(candidate_of(pairs_[next]), candidate)) {
-            merged_.push_back(candidate_of(pairs_[next++]));
+            keep(candidate_of(pairs_[next++]));
         }
         if (next < pairs_.size() && same_pair(candidate_of(pairs_[next]), candidate)) {
             ++next;
-            merged_.push_back(candidate);
+            keep(candidate);
             continue;
         }
         if (candidate.held != Held::held) continue;
@@ -124,7 +142,7 @@ void Broadphase::reconcile_candidates(btDispatcher* dispatcher) {
         Proxy* b = live(candidate.b);
         if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
     }
-    while (next < pairs_.size()) merged_.push_back(candidate_of(pairs_[next++]));
+    while (next < pairs_.size()) keep(candidate_of(pairs_[next++]));
     candidates_.swap(merged_);
 }
 

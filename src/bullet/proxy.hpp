@@ -20,8 +20,6 @@ struct Broadphase::Proxy : btBroadphaseProxy {
     /// Steps since the box last moved, for a static-class proxy held dynamic (restless_).
     std::uint32_t calm_steps = 0;
     bool alive = false;
-    /// Listed in moved_ since the last flush.
-    bool moved = false;
     /// Its bits keep it from pairing with any other proxy of its kind (Bullet's static and
     /// kinematic objects).
     bool static_class = false;
@@ -34,6 +32,20 @@ struct Broadphase::Proxy : btBroadphaseProxy {
     std::vector<std::uint32_t> partners;
 };
 
+namespace detail {
+/// UnknownIdError, out of the way of the calls that check their proxy.
+[[noreturn]] void throw_unknown_proxy();
+}  // namespace detail
+
+// Here, inline: setAabb asks it for every proxy at every step.
+inline Broadphase::Proxy& Broadphase::own(const btBroadphaseProxy* proxy) const {
+    if (proxy != nullptr && proxy->m_uniqueId >= 0) {
+        const auto id = static_cast<std::size_t>(proxy->m_uniqueId);
+        if (id < slots_.size() && slots_[id].get() == proxy && slots_[id]->alive) return *slots_[id];
+    }
+    detail::throw_unknown_proxy();
+}
+
 // Here, inline: every pass over the candidates and the proxies asks it.
 inline Broadphase::Proxy* Broadphase::live(BoxId id) const noexcept {
     if (id >= slots_.size()) return nullptr;
@@ -41,11 +53,21 @@ inline Broadphase::Proxy* Broadphase::live(BoxId id) const noexcept {
     return proxy != nullptr && proxy->alive ? proxy : nullptr;
 }
 
+// Here, inline: the passes over the candidates call it for every one.
+inline void Broadphase::test_candidate(Candidate& candidate, btDispatcher* dispatcher) {
+    const bool overlap = overlaps(boxes_[candidate.a], boxes_[candidate.b]);
+    // Most candidates stay as they were: apart and still apart, or held (or refused) and still
+    // overlapping. A filter callback is asked at every step.
+    if (!callback_mode_ && overlap == (candidate.held != Held::apart)) return;
+    settle_candidate(candidate, overlap, dispatcher);
+}
+
 namespace detail {
 
-/// marks_: the id is listed in fresh_, in stale_.
+/// marks_: the id is listed in fresh_, in stale_, in moved_.
 inline constexpr std::uint8_t fresh_mark = 1;
 inline constexpr std::uint8_t stale_mark = 2;
+inline constexpr std::uint8_t moved_mark = 4;
 
 /// (a, b) order of candidates, the order of the pairs of smb's events.
 [[nodiscard]] inline bool comes_before(std::uint32_t a0, std::uint32_t b0, std::uint32_t a1,
@@ -79,6 +101,13 @@ inline constexpr std::uint8_t stale_mark = 2;
         fat.max[k] += skin;
     }
     return fat;
+}
+
+[[nodiscard]] inline bool contains(const Box<float, 3>& outer, const Box<float, 3>& inner) noexcept {
+    for (int k = 0; k < 3; ++k) {
+        if (inner.min[k] < outer.min[k] || inner.max[k] > outer.max[k]) return false;
+    }
+    return true;
 }
 
 /// A box that overlaps no box (min > max on every axis): a destroyed proxy's.

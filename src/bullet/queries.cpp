@@ -118,6 +118,8 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     candidates_ = {};
     merged_ = {};
     found_ = {};
+    found_seen_ = {};
+    candidates_sorted_ = true;
     index_ = {};
     index_current_ = false;
     index_ids_ = {};
@@ -125,6 +127,7 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     hits_ = {};
     fresh_ = {};
     stale_ = {};
+    stale_boxes_ = {};
     marks_ = {};
     incremental_ = false;
     slots_.clear();

@@ -14,37 +14,24 @@
 
 namespace smb::bullet {
 
-namespace {
-
-[[nodiscard]] bool contains(const Box<float, 3>& outer, const Box<float, 3>& inner) noexcept {
-    for (int k = 0; k < 3; ++k) {
-        if (inner.min[k] < outer.min[k] || inner.max[k] > outer.max[k]) return false;
-    }
-    return true;
-}
-
-}  // namespace
-
 void Broadphase::flush_moves() {
     if (moved_.empty()) return;
     move_ids_.clear();
     move_boxes_.clear();
     for (const std::uint32_t id : moved_) {
-        if (live(id) == nullptr) continue;
+        // A proxy destroyed since has an empty box, inside any fat box.
         const Box<float, 3>& box = boxes_[id];
         const Box<float, 3>& fat = fat_boxes_[id];
-        if (contains(fat, box)) continue;
+        if (detail::contains(fat, box)) continue;
         // A box that left its fat box by less than the skin drifts, and a new skin holds it for a
         // while; one that went further moves fast and would leave any skin at the next step,
         // where its fat box would only bring the World more pairs.
-        const bool drifting = contains(detail::grown(fat, skin_), box);
+        const bool drifting = detail::contains(detail::grown(fat, skin_), box);
         move_ids_.push_back(id);
         move_boxes_.push_back(drifting ? detail::grown(box, skin_) : box);
     }
     if (!move_ids_.empty()) world_.update(move_ids_, move_boxes_);
-    for (const std::uint32_t id : moved_) {
-        if (Proxy* proxy = live(id)) proxy->moved = false;
-    }
+    for (const std::uint32_t id : moved_) marks_[id] &= static_cast<std::uint8_t>(~detail::moved_mark);
     moved_.clear();
     for (std::size_t i = 0; i < move_ids_.size(); ++i) {
         const auto id = static_cast<std::uint32_t>(move_ids_[i]);
@@ -94,7 +81,10 @@ void Broadphase::drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher) {
 void Broadphase::merge_candidates(btDispatcher* dispatcher) {
     const std::span<const Pair> ended = events_.ended();
     const std::span<const Pair> begun = events_.begun();
-    if (ended.empty() && begun.empty()) return;
+    if (ended.empty() && begun.empty()) {
+        test_candidates(dispatcher);
+        return;
+    }
     const auto candidate_of = [](const Pair& pair) {
         return Candidate{static_cast<std::uint32_t>(pair.a), static_cast<std::uint32_t>(pair.b), Held::apart};
     };
@@ -103,12 +93,16 @@ void Broadphase::merge_candidates(btDispatcher* dispatcher) {
     // pair possibly among both; the ended one is met first.
     merged_.clear();
     merged_.reserve(candidates_.size() - ended.size() + begun.size());
+    // Each candidate kept is tested on the boxes as it is written: one pass.
+    const auto keep = [this, dispatcher](const Candidate& candidate) {
+        merged_.push_back(candidate);
+        test_candidate(merged_.back(), dispatcher);
+    };
     std::size_t next_ended = 0;
     std::size_t next_begun = 0;
     for (const Candidate& candidate : candidates_) {
         const Pair pair{candidate.a, candidate.b};
-        while (next_begun < begun.size() && begun[next_begun] < pair)
-            merged_.push_back(candidate_of(begun[next_begun++]));
+        while (next_begun < begun.size() && begun[next_begun] < pair) keep(candidate_of(begun[next_begun++]));
         if (next_ended < ended.size() && ended[next_ended] == pair) {
             ++next_ended;
             if (candidate.held != Held::held) continue;
@@ -118,45 +112,45 @@ void Broadphase::merge_candidates(btDispatcher* dispatcher) {
             if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
             continue;
         }
-        merged_.push_back(candidate);
+        keep(candidate);
     }
-    while (next_begun < begun.size()) merged_.push_back(candidate_of(begun[next_begun++]));
+    while (next_begun < begun.size()) keep(candidate_of(begun[next_begun++]));
     candidates_.swap(merged_);
 }
 
 void Broadphase::test_candidates(btDispatcher* dispatcher) {
+    for (Candidate& candidate : candidates_) test_candidate(candidate, dispatcher);
+}
+
+void Broadphase::settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher) {
     // The cache's callbacks may create and destroy proxies on the way: boxes_ may grow (it is
     // indexed afresh for every candidate), a destroyed proxy's box pairs with nothing and its
     // pairs left the cache with it, and a proxy created has no candidate before the next
-    // detection. The candidates themselves change only in merge_candidates.
-    for (Candidate& candidate : candidates_) {
-        const bool overlap = overlaps(boxes_[candidate.a], boxes_[candidate.b]);
-        if (!overlap) {
-            if (candidate.held == Held::held) {
-                Proxy* a = live(candidate.a);
-                Proxy* b = live(candidate.b);
-                if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
-            }
-            candidate.held = Held::apart;
-            continue;
+    // detection. The candidates themselves change only in the passes that call this.
+    if (!overlap) {
+        if (candidate.held == Held::held) {
+            Proxy* a = live(candidate.a);
+            Proxy* b = live(candidate.b);
+            if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
         }
+        candidate.held = Held::apart;
+        return;
+    }
+    Proxy* a = live(candidate.a);
+    Proxy* b = live(candidate.b);
+    if (a == nullptr || b == nullptr) return;  // not reached: a destroyed proxy's box is empty
+    if (callback_mode_) {
         // A filter callback may change its mind at any step: it is asked at every one, as the
         // cache asks it for every pair.
-        if (candidate.held != Held::apart && !callback_mode_) continue;
-        Proxy* a = live(candidate.a);
-        Proxy* b = live(candidate.b);
-        if (a == nullptr || b == nullptr) continue;  // not reached: a destroyed proxy's box is empty
-        if (callback_mode_) {
-            const bool wanted = cache_->needsBroadphaseCollision(a, b);
-            if (wanted == (candidate.held == Held::held)) continue;
-            if (!wanted) {
-                drop_pair(*a, *b, dispatcher);
-                candidate.held = Held::apart;
-                continue;
-            }
+        const bool wanted = cache_->needsBroadphaseCollision(a, b);
+        if (wanted == (candidate.held == Held::held)) return;
+        if (!wanted) {
+            drop_pair(*a, *b, dispatcher);
+            candidate.held = Held::apart;
+            return;
         }
-        candidate.held = hold_pair(*a, *b) ? Held::held : Held::refused;
     }
+    candidate.held = hold_pair(*a, *b) ? Held::held : Held::refused;
 }
 
 }  // namespace smb::bullet

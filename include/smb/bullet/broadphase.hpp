@@ -124,12 +124,16 @@ private:
     void flush_moves();
     void sync_filters();
     /// The candidates after a detection: those whose fat boxes stopped overlapping leave (and
-    /// the cache, if it held them), those that began join.
+    /// the cache, if it held them), those that began join; every candidate is tested.
     void merge_candidates(btDispatcher* dispatcher);
-    /// Brings the cache to the candidates whose boxes overlap now.
+    /// Brings the cache to the candidates whose boxes overlap now (test_candidate on each).
     void test_candidates(btDispatcher* dispatcher);
+    /// Adds the candidate's pair to the cache if its boxes began to overlap, removes it if they
+    /// stopped; the passes that rewrite the list call it for every candidate they write.
+    void test_candidate(Candidate& candidate, btDispatcher* dispatcher);
+    void settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher);
     /// After a detection that followed incremental steps (the events then describe another
-    /// list): makes the candidates exactly pairs_, keeping what the cache holds of them.
+    /// list): makes the candidates exactly pairs_, in order, keeping what the cache holds.
     void reconcile_candidates(btDispatcher* dispatcher);
     /// Without a detection: the candidates of the fat boxes changed in this step (fresh_), found
     /// through index_ and among the stale boxes, replace those they had.
@@ -154,6 +158,9 @@ private:
     std::vector<Candidate> candidates_;
     std::vector<Candidate> merged_;
     std::vector<Candidate> found_;
+    std::vector<std::uint8_t> found_seen_;
+    /// The candidates are in (a, b) order; those found between detections are appended.
+    bool candidates_sorted_ = true;
     /// The fat boxes of the live proxies as they were when it was built; the stale ones (whose
     /// fat box changed since) are listed in stale_.
     BoxIndex<float, 3> index_;
@@ -162,9 +169,11 @@ private:
     std::vector<Box<float, 3>> index_boxes_;
     std::vector<BoxId> hits_;
     /// Ids whose fat box changed since the last calculateOverlappingPairs, and since index_ was
-    /// built; marks_ holds, by id, whether an id is listed in either (fresh_mark, stale_mark).
+    /// built; marks_ holds, by id, whether an id is listed in either, or in moved_ (fresh_mark,
+    /// stale_mark, moved_mark).
     std::vector<std::uint32_t> fresh_;
     std::vector<std::uint32_t> stale_;
+    std::vector<Box<float, 3>> stale_boxes_;
     std::vector<std::uint8_t> marks_;
     /// The candidates changed without a detection since the last one.
     bool incremental_ = false;
