@@ -2,8 +2,8 @@
 // Speed of a Bullet pile on each broad phase: the whole stepSimulation, and the broad phase's part
 // of it (calculateOverlappingPairs, and the setAabb calls btCollisionWorld makes for every object
 // at every step), in two scenes: an avalanche (bodies pouring down, a plough pushing through,
-// bodies taken out and dropped in) and a settled pile (most bodies asleep). One CSV row per broad
-// phase and scene, the first steps apart from the steady state.
+// bodies taken out and dropped in) and the settled pile (Bullet keeps it awake). One CSV row per
+// broad phase and scene, the first steps apart from the steady state.
 //
 //   smb_bullet_step_bench --bodies 10000 --broadphase smb,dbvt,sap
 
