@@ -36,7 +36,7 @@ PileScene::PileScene(btBroadphaseInterface& broadphase, const PileSettings& sett
     owned_.add(world_, *wall_shape_z_, 0, btVector3(0, 8, half_width_ + 0.5f));
     plough_ = &owned_.add(world_, plough_shape_, 0, btVector3(-half_width_ + 1.5f, 2, 0));
     plough_->setCollisionFlags(plough_->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-    plough_->setActivationState(DISABLE_DEACTIVATION);
+    if (settings.keep_plough_awake) plough_->setActivationState(DISABLE_DEACTIVATION);
     fixed_bodies_ = owned_.bodies.size();
 
     std::uniform_real_distribution<float> jitter(-0.05f, 0.05f);
@@ -55,7 +55,10 @@ PileScene::~PileScene() { owned_.remove_all(world_); }
 void PileScene::drop_body(const btVector3& origin) {
     // Two boxes for every sphere.
     const bool sphere = owned_.bodies.size() % 3 == 0;
-    owned_.add(world_, sphere ? static_cast<btCollisionShape&>(sphere_shape_) : box_shape_, 1.0f, origin);
+    btRigidBody& body =
+        owned_.add(world_, sphere ? static_cast<btCollisionShape&>(sphere_shape_) : box_shape_, 1.0f, origin);
+    body.setDamping(settings_.linear_damping, settings_.angular_damping);
+    body.setSleepingThresholds(settings_.linear_sleeping_threshold, settings_.angular_sleeping_threshold);
 }
 
 void PileScene::step() {
@@ -93,6 +96,7 @@ PileMeasure PileScene::measure() const {
             0.5 * body.getLinearVelocity().length2() / body.getInvMass() + 0.5 * (spin * spin).dot(inertia);
         ++moving;
         if (body.isActive()) ++measure.awake;
+        if (body.getActivationState() == ISLAND_SLEEPING) ++measure.asleep;
     }
     if (moving > 0) measure.mean_height /= static_cast<double>(moving);
     const int manifolds = dispatcher_.getNumManifolds();

@@ -25,6 +25,15 @@ struct PileSettings {
     std::size_t churn = 20;
     /// The plough moves only while true.
     bool plough = true;
+    /// Bullet never deactivates the plough while true. A kinematic body Bullet keeps awake wakes
+    /// every body touching it at every step, so a pile with the plough parked in it cannot sleep.
+    bool keep_plough_awake = true;
+    /// Given to every dynamic body through btRigidBody::setDamping and setSleepingThresholds; the
+    /// defaults are Bullet's own.
+    float linear_damping = 0;
+    float angular_damping = 0;
+    float linear_sleeping_threshold = 0.8f;
+    float angular_sleeping_threshold = 1.0f;
 };
 
 /// What the pile looks like at one instant.
@@ -34,6 +43,7 @@ struct PileMeasure {
     std::size_t manifolds = 0;
     double kinetic_energy = 0;  ///< translational and rotational, of the dynamic bodies
     std::size_t awake = 0;      ///< dynamic bodies Bullet has not put to sleep
+    std::size_t asleep = 0;     ///< dynamic bodies whose island Bullet put to sleep
 };
 
 class PileScene {

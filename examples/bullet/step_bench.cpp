@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Speed of a Bullet pile on each broad phase: the whole stepSimulation, and the broad phase's part
 // of it (calculateOverlappingPairs, and the setAabb calls btCollisionWorld makes for every object
-// at every step), in two scenes: an avalanche (bodies pouring down, a plough pushing through,
-// bodies taken out and dropped in) and a settled pile (most bodies asleep). One CSV row per broad
-// phase and scene, the first steps apart from the steady state.
+// at every step), in three scenes: an avalanche (bodies pouring down, a plough pushing through,
+// bodies taken out and dropped in), the settled pile with Bullet's default sleeping thresholds
+// (Bullet keeps it awake), and the settled pile with damping and the sleeping thresholds of
+// Bullet's demos, which a user sets for the pile to fall asleep (`asleep` counts the bodies Bullet
+// put to sleep). One CSV row per broad phase and scene, the first steps apart from the steady
+// state.
 //
 //   smb_bullet_step_bench --bodies 10000 --broadphase smb,dbvt,sap
 
@@ -122,9 +125,23 @@ void run(smb::examples::PileScene& scene, TimedBroadphase& timed, int steps, int
 void print_row(const std::string& name, std::size_t bodies, const char* scene, const char* part, const Window& w,
                const smb::examples::PileScene& pile, const TimedBroadphase& timed) {
     const smb::examples::PileMeasure measure = pile.measure();
-    fmt::print("{},{},{},{},{},{:.3f},{:.3f},{},{:.3f},{},{}\n", name, bodies, scene, part, w.steps,
+    fmt::print("{},{},{},{},{},{:.3f},{:.3f},{},{:.3f},{},{},{}\n", name, bodies, scene, part, w.steps,
                w.steps > 0 ? w.step_ms / w.steps : 0.0, w.steps > 0 ? w.broad_ms / w.steps : 0.0, measure.manifolds,
-               measure.mean_height, measure.awake, timed.oversized());
+               measure.mean_height, measure.awake, measure.asleep, timed.oversized());
+}
+
+/// Lets the pile settle for `settle_steps` untimed steps, then times `rest_steps` steps.
+void run_rest(const std::string& name, std::size_t bodies, const char* scene_name,
+              const smb::examples::PileSettings& settings, int settle_steps, int rest_steps) {
+    TimedBroadphase timed(make_broadphase(name, bodies));
+    smb::examples::PileScene scene(timed, settings);
+    Window ignored;
+    Window settling;
+    run(scene, timed, settle_steps, settle_steps, ignored, settling);
+    Window head;
+    Window tail;
+    run(scene, timed, rest_steps, 0, head, tail);
+    print_row(name, bodies, scene_name, "steady", tail, scene, timed);
 }
 
 }  // namespace
@@ -134,6 +151,7 @@ int main(int argc, char** argv) {
     std::size_t bodies = 10000;
     int motion_steps = 150;
     int settle_steps = 400;
+    int damped_settle_steps = 400;
     int rest_steps = 50;
     int first = 10;
     std::vector<std::string> names{"smb", "dbvt", "sap"};
@@ -141,12 +159,16 @@ int main(int argc, char** argv) {
     app.add_option("--motion-steps", motion_steps, "steps of the avalanche timed")->check(CLI::PositiveNumber);
     app.add_option("--settle-steps", settle_steps, "untimed steps for the pile to come to rest")
         ->check(CLI::NonNegativeNumber);
+    app.add_option("--damped-settle-steps", damped_settle_steps,
+                   "untimed steps for the damped pile to come to rest and fall asleep")
+        ->check(CLI::NonNegativeNumber);
     app.add_option("--rest-steps", rest_steps, "steps of the settled pile timed")->check(CLI::NonNegativeNumber);
     app.add_option("--first", first, "steps reported apart as the first ones")->check(CLI::NonNegativeNumber);
     app.add_option("--broadphase", names, "any of smb, dbvt, sap")->delimiter(',');
     CLI11_PARSE(app, argc, argv);
 
-    fmt::print("broadphase,bodies,scene,part,steps,step_ms,broadphase_ms,manifolds,mean_height,awake,oversized\n");
+    fmt::print(
+        "broadphase,bodies,scene,part,steps,step_ms,broadphase_ms,manifolds,mean_height,awake,asleep,oversized\n");
     for (const std::string& name : names) {
         {
             smb::examples::PileSettings settings;
@@ -164,15 +186,15 @@ int main(int argc, char** argv) {
             settings.bodies = bodies;
             settings.plough = false;
             settings.churn_every = 0;
-            TimedBroadphase timed(make_broadphase(name, bodies));
-            smb::examples::PileScene scene(timed, settings);
-            Window ignored;
-            Window settling;
-            run(scene, timed, settle_steps, settle_steps, ignored, settling);
-            Window head;
-            Window tail;
-            run(scene, timed, rest_steps, 0, head, tail);
-            print_row(name, bodies, "rest", "steady", tail, scene, timed);
+            run_rest(name, bodies, "rest", settings, settle_steps, rest_steps);
+            // The parked plough left to Bullet's deactivation, and damping and sleeping thresholds
+            // as Bullet's ragdoll demo sets them, for Bullet to put the pile's islands to sleep.
+            settings.keep_plough_awake = false;
+            settings.linear_damping = 0.05f;
+            settings.angular_damping = 0.85f;
+            settings.linear_sleeping_threshold = 1.6f;
+            settings.angular_sleeping_threshold = 2.5f;
+            run_rest(name, bodies, "rest damped", settings, damped_settle_steps, rest_steps);
         }
         std::fflush(stdout);
     }

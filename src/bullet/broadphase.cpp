@@ -5,6 +5,7 @@
 #include "smb/bullet/broadphase.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -21,6 +22,10 @@ constexpr std::uint32_t steps_before_static = 8;
 
 }  // namespace
 
+void detail::throw_unknown_proxy() {
+    throw UnknownIdError("smb::bullet::Broadphase: the proxy was not created by this broad phase, or was destroyed");
+}
+
 Box<float, 3> detail::checked_box(const btVector3& min, const btVector3& max, const char* what) {
     const Box<float, 3> box = box_of(min, max);
     if (!is_valid(box)) {
@@ -30,8 +35,11 @@ Box<float, 3> detail::checked_box(const btVector3& min, const btVector3& max, co
     return box;
 }
 
-Broadphase::Broadphase(const WorldSettings& settings, btOverlappingPairCache* pair_cache)
-    : world_(settings), cache_(pair_cache) {
+Broadphase::Broadphase(const WorldSettings& settings, btOverlappingPairCache* pair_cache, float skin)
+    : world_(settings), skin_(skin), cache_(pair_cache) {
+    if (!std::isfinite(skin) || skin < 0) {
+        throw ArgumentError("smb::bullet::Broadphase: the skin must be finite and not negative");
+    }
     if (cache_ == nullptr) {
         owned_cache_ = std::make_unique<btHashedOverlappingPairCache>();
         cache_ = owned_cache_.get();
@@ -39,20 +47,6 @@ Broadphase::Broadphase(const WorldSettings& settings, btOverlappingPairCache* pa
 }
 
 Broadphase::~Broadphase() = default;
-
-Broadphase::Proxy& Broadphase::own(const btBroadphaseProxy* proxy) const {
-    if (proxy != nullptr && proxy->m_uniqueId >= 0) {
-        const auto id = static_cast<std::size_t>(proxy->m_uniqueId);
-        if (id < slots_.size() && slots_[id].get() == proxy && slots_[id]->alive) return *slots_[id];
-    }
-    throw UnknownIdError("smb::bullet::Broadphase: the proxy was not created by this broad phase, or was destroyed");
-}
-
-Broadphase::Proxy* Broadphase::live(BoxId id) const noexcept {
-    if (id >= slots_.size()) return nullptr;
-    Proxy* proxy = slots_[id].get();
-    return proxy != nullptr && proxy->alive ? proxy : nullptr;
-}
 
 btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVector3& aabbMax, int /*shapeType*/,
                                            void* userPtr, int collisionFilterGroup, int collisionFilterMask,
@@ -69,8 +63,16 @@ btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVec
         slots_.push_back(std::make_unique<Proxy>());
         free_ids_.push_back(id);  // so that a throw below leaves the new slot free
     }
-    world_.insert(id, box);
+    if (boxes_.size() <= id) {
+        boxes_.resize(id + 1, detail::empty_box());
+        fat_boxes_.resize(id + 1, detail::empty_box());
+        marks_.resize(id + 1, 0);
+    }
+    const Box<float, 3> fat = detail::grown(box, skin_);
+    world_.insert(id, fat);
     free_ids_.pop_back();
+    boxes_[id] = box;
+    fat_boxes_[id] = fat;
 
     Proxy& proxy = *slots_[id];
     proxy.m_clientObject = userPtr;
@@ -82,13 +84,13 @@ btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVec
     proxy.filter = Filter{};
     proxy.calm_steps = 0;
     proxy.alive = true;
-    proxy.moved = false;
     proxy.static_class = false;
     proxy.held_static = false;
     proxy.restless = false;
     proxy.partners.clear();
     ++live_;
     changed_ = true;
+    boxes_changed_ = true;
     // The bits reach smb at the next calculateOverlappingPairs (sync_filters), as later changes
     // to them do.
     return &proxy;
@@ -101,22 +103,12 @@ void Broadphase::destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher
     retired_ids_.reserve(retired_ids_.size() + 1);
     world_.remove(id);
     retired_ids_.push_back(id);
+    boxes_[id] = detail::empty_box();
     own_proxy.alive = false;
     own_proxy.m_clientObject = nullptr;
     --live_;
     changed_ = true;
 }
-
-namespace {
-
-void erase_partner(std::vector<std::uint32_t>& partners, std::uint32_t id) {
-    const auto at = std::find(partners.begin(), partners.end(), id);
-    if (at == partners.end()) return;
-    *at = partners.back();
-    partners.pop_back();
-}
-
-}  // namespace
 
 void Broadphase::remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher) {
     const auto id = static_cast<std::uint32_t>(proxy.m_uniqueId);
@@ -132,7 +124,7 @@ void Broadphase::remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher) {
     for (const std::uint32_t partner_id : partners) {
         Proxy* partner = live(partner_id);
         if (partner == nullptr) continue;  // destroyed inside a callback: its pairs went with it
-        erase_partner(partner->partners, id);
+        detail::erase_partner(partner->partners, id);
         --pairs_held_;
         if (cache_is_ours) cache_->removeOverlappingPair(&proxy, partner, dispatcher);
     }
@@ -141,51 +133,27 @@ void Broadphase::remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher) {
 void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax,
                          btDispatcher* /*dispatcher*/) {
     Proxy& own_proxy = own(proxy);
-    (void)detail::checked_box(aabbMin, aabbMax, "setAabb");
+    const Box<float, 3> box = detail::checked_box(aabbMin, aabbMax, "setAabb");
     // btCollisionWorld sets every object's box at every step, resting or not: an unchanged box
     // costs nothing further.
     if (own_proxy.m_aabbMin == aabbMin && own_proxy.m_aabbMax == aabbMax) return;
-    if (!own_proxy.moved) {
-        moved_.push_back(static_cast<std::uint32_t>(own_proxy.m_uniqueId));
-        own_proxy.moved = true;
+    const auto id = static_cast<std::uint32_t>(own_proxy.m_uniqueId);
+    // Inside its fat box the box changes nothing in the World; flush_moves looks again at those
+    // that left it (they may come back before it).
+    if ((marks_[id] & detail::moved_mark) == 0 && !detail::contains(fat_boxes_[id], box)) {
+        moved_.push_back(id);
+        marks_[id] |= detail::moved_mark;
     }
     own_proxy.m_aabbMin = aabbMin;
     own_proxy.m_aabbMax = aabbMax;
-    changed_ = true;
+    boxes_[id] = box;
+    boxes_changed_ = true;
 }
 
 void Broadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const {
     const Proxy& own_proxy = own(proxy);
     aabbMin = own_proxy.m_aabbMin;
     aabbMax = own_proxy.m_aabbMax;
-}
-
-void Broadphase::flush_moves() {
-    if (moved_.empty()) return;
-    move_ids_.clear();
-    move_boxes_.clear();
-    for (const std::uint32_t id : moved_) {
-        Proxy* proxy = live(id);
-        if (proxy == nullptr) continue;
-        move_ids_.push_back(id);
-        move_boxes_.push_back(detail::box_of(proxy->m_aabbMin, proxy->m_aabbMax));
-    }
-    world_.update(move_ids_, move_boxes_);
-    for (const std::uint32_t id : moved_) {
-        Proxy* proxy = live(id);
-        if (proxy == nullptr) continue;
-        proxy->moved = false;
-        proxy->calm_steps = 0;
-        if (proxy->held_static) {
-            world_.set_static(id, false);
-            proxy->held_static = false;
-        }
-        if (proxy->static_class && !proxy->restless) {
-            restless_.push_back(id);
-            proxy->restless = true;
-        }
-    }
-    moved_.clear();
 }
 
 void Broadphase::sync_filters() {
@@ -213,11 +181,10 @@ void Broadphase::sync_filters() {
 void Broadphase::set_callback_mode(bool callback_mode) {
     callback_mode_ = callback_mode;
     changed_ = true;
-    if (!callback_mode_) {
-        world_.set_pair_predicate({});
-        return;  // sync_filters gives the bits back to smb
-    }
-    // Bullet's cache asks the callback alone, bits or not: smb must report every overlap.
+    // sync_filters gives the bits back to smb.
+    if (!callback_mode_) return;
+    // Bullet's cache asks the callback alone, bits or not: smb must report every overlap, and
+    // test_candidates asks the callback.
     for (std::size_t id = 0; id < slots_.size(); ++id) {
         Proxy* proxy = live(id);
         if (proxy == nullptr) continue;
@@ -227,11 +194,6 @@ void Broadphase::set_callback_mode(bool callback_mode) {
         proxy->held_static = false;
         proxy->static_class = false;
     }
-    world_.set_pair_predicate([this](BoxId a, BoxId b) {
-        Proxy* proxy_a = live(a);
-        Proxy* proxy_b = live(b);
-        return proxy_a != nullptr && proxy_b != nullptr && cache_->needsBroadphaseCollision(proxy_a, proxy_b);
-    });
 }
 
 void Broadphase::settle_restless_statics() {
@@ -254,56 +216,48 @@ void Broadphase::settle_restless_statics() {
     restless_.resize(kept);
 }
 
-void Broadphase::apply_pair_events(btDispatcher* dispatcher) {
-    // A callback (a ghost object's pair callback) may create or destroy proxies on the way:
-    // every pair is looked up again, and a destroyed proxy's pairs left the cache with it.
-    // The partners and the count are kept before the cache is called, so that they hold what
-    // the cache holds should a callback destroy a proxy inside the call.
-    for (const Pair& pair : events_.ended()) {
-        Proxy* a = live(pair.a);
-        Proxy* b = live(pair.b);
-        if (a == nullptr || b == nullptr) continue;  // removed with the proxy destroyed
-        erase_partner(a->partners, static_cast<std::uint32_t>(pair.b));
-        erase_partner(b->partners, static_cast<std::uint32_t>(pair.a));
-        --pairs_held_;
-        cache_->removeOverlappingPair(a, b, dispatcher);
-    }
-    for (const Pair& pair : events_.begun()) {
-        Proxy* a = live(pair.a);
-        Proxy* b = live(pair.b);
-        if (a == nullptr || b == nullptr) continue;
-        // Ids are the proxies' m_uniqueId, an int: they fit the partner lists' 32 bits.
-        a->partners.push_back(static_cast<std::uint32_t>(pair.b));
-        b->partners.push_back(static_cast<std::uint32_t>(pair.a));
-        ++pairs_held_;
-        // A cache may refuse a pair (btNullPairCache refuses all): then it is not held.
-        if (cache_->addOverlappingPair(a, b) == nullptr && a->alive && b->alive) {
-            erase_partner(a->partners, static_cast<std::uint32_t>(pair.b));
-            erase_partner(b->partners, static_cast<std::uint32_t>(pair.a));
-            --pairs_held_;
-        }
-    }
-}
-
 void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
     // Filters first, so that a static proxy that moved since is held dynamic by flush_moves.
     const bool callback_mode = cache_->getOverlapFilterCallback() != nullptr;
     if (callback_mode != callback_mode_) set_callback_mode(callback_mode);
     if (!callback_mode_) sync_filters();
     flush_moves();
-    // With nothing changed the pairs are those the cache holds. A filter callback may change its
-    // mind at any step, so it is asked at every one.
-    if (changed_ || callback_mode_) {
+    // A proxy or a filter changed, or many fat boxes: smb detects the candidates again. A few
+    // fat boxes changed: their candidates are found one by one (a detection costs about as much
+    // as finding those of a sixteenth of the boxes). No fat box changed: the candidates stand.
+    // Then the candidates are tested on the boxes, unless no box changed either (the pairs are
+    // those the cache holds); a filter callback may change its mind at any step, so it is asked
+    // at every one.
+    const std::size_t fresh_limit = std::max<std::size_t>(64, live_ / 16);
+    bool tested = false;
+    if (changed_ || fresh_.size() > fresh_limit) {
         pairs_.clear();
         world_.detect(pairs_, events_);
         const std::size_t retired_before = retired_ids_.size();
         changed_ = false;
-        apply_pair_events(dispatcher);
+        tested = true;
+        if (incremental_) {
+            reconcile_candidates(dispatcher);
+        } else {
+            merge_candidates(dispatcher);
+        }
+        incremental_ = false;
+        index_current_ = false;
+        for (const std::uint32_t id : fresh_) marks_[id] &= detail::moved_mark;
+        for (const std::uint32_t id : stale_) marks_[id] &= detail::moved_mark;
+        fresh_.clear();
+        stale_.clear();
         // The events named the ids destroyed before the detection for the last time.
         free_ids_.insert(free_ids_.end(), retired_ids_.begin(),
                          retired_ids_.begin() + static_cast<std::ptrdiff_t>(retired_before));
         retired_ids_.erase(retired_ids_.begin(), retired_ids_.begin() + static_cast<std::ptrdiff_t>(retired_before));
+    } else if (!fresh_.empty()) {
+        update_fresh_candidates(dispatcher);
+        incremental_ = true;
+        tested = true;
     }
+    if (!tested && (boxes_changed_ || callback_mode_)) test_candidates(dispatcher);
+    boxes_changed_ = false;
     settle_restless_statics();
 }
 

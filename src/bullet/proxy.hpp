@@ -2,7 +2,9 @@
 #pragma once
 // What the broad phase keeps per proxy beside Bullet's own fields.
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "smb/box.hpp"
@@ -18,8 +20,6 @@ struct Broadphase::Proxy : btBroadphaseProxy {
     /// Steps since the box last moved, for a static-class proxy held dynamic (restless_).
     std::uint32_t calm_steps = 0;
     bool alive = false;
-    /// Listed in moved_ since the last flush.
-    bool moved = false;
     /// Its bits keep it from pairing with any other proxy of its kind (Bullet's static and
     /// kinematic objects).
     bool static_class = false;
@@ -33,6 +33,47 @@ struct Broadphase::Proxy : btBroadphaseProxy {
 };
 
 namespace detail {
+/// UnknownIdError, out of the way of the calls that check their proxy.
+[[noreturn]] void throw_unknown_proxy();
+}  // namespace detail
+
+// Here, inline: setAabb asks it for every proxy at every step.
+inline Broadphase::Proxy& Broadphase::own(const btBroadphaseProxy* proxy) const {
+    if (proxy != nullptr && proxy->m_uniqueId >= 0) {
+        const auto id = static_cast<std::size_t>(proxy->m_uniqueId);
+        if (id < slots_.size() && slots_[id].get() == proxy && slots_[id]->alive) return *slots_[id];
+    }
+    detail::throw_unknown_proxy();
+}
+
+// Here, inline: every pass over the candidates and the proxies asks it.
+inline Broadphase::Proxy* Broadphase::live(BoxId id) const noexcept {
+    if (id >= slots_.size()) return nullptr;
+    Proxy* proxy = slots_[id].get();
+    return proxy != nullptr && proxy->alive ? proxy : nullptr;
+}
+
+// Here, inline: the passes over the candidates call it for every one.
+inline void Broadphase::test_candidate(Candidate& candidate, btDispatcher* dispatcher) {
+    const bool overlap = overlaps(boxes_[candidate.a], boxes_[candidate.b]);
+    // Most candidates stay as they were: apart and still apart, or held (or refused) and still
+    // overlapping. A filter callback is asked at every step.
+    if (!callback_mode_ && overlap == (candidate.held != Held::apart)) return;
+    settle_candidate(candidate, overlap, dispatcher);
+}
+
+namespace detail {
+
+/// marks_: the id is listed in fresh_, in stale_, in moved_.
+inline constexpr std::uint8_t fresh_mark = 1;
+inline constexpr std::uint8_t stale_mark = 2;
+inline constexpr std::uint8_t moved_mark = 4;
+
+/// (a, b) order of candidates, the order of the pairs of smb's events.
+[[nodiscard]] inline bool comes_before(std::uint32_t a0, std::uint32_t b0, std::uint32_t a1,
+                                       std::uint32_t b1) noexcept {
+    return a0 != a1 ? a0 < a1 : b0 < b1;
+}
 
 /// Static and kinematic objects as btCollisionWorld files them (group StaticFilter, mask every bit
 /// but StaticFilter), and any proxy whose group holds only StaticFilter and KinematicFilter bits
@@ -50,6 +91,36 @@ namespace detail {
 
 [[nodiscard]] inline Box<float, 3> box_of(const btVector3& min, const btVector3& max) noexcept {
     return Box<float, 3>{{min.x(), min.y(), min.z()}, {max.x(), max.y(), max.z()}};
+}
+
+/// The box grown by `skin` on every side. Rounding is monotone, so it holds the box.
+[[nodiscard]] inline Box<float, 3> grown(const Box<float, 3>& box, float skin) noexcept {
+    Box<float, 3> fat = box;
+    for (int k = 0; k < 3; ++k) {
+        fat.min[k] -= skin;
+        fat.max[k] += skin;
+    }
+    return fat;
+}
+
+[[nodiscard]] inline bool contains(const Box<float, 3>& outer, const Box<float, 3>& inner) noexcept {
+    for (int k = 0; k < 3; ++k) {
+        if (inner.min[k] < outer.min[k] || inner.max[k] > outer.max[k]) return false;
+    }
+    return true;
+}
+
+/// A box that overlaps no box (min > max on every axis): a destroyed proxy's.
+[[nodiscard]] inline Box<float, 3> empty_box() noexcept {
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    return Box<float, 3>{{inf, inf, inf}, {-inf, -inf, -inf}};
+}
+
+inline void erase_partner(std::vector<std::uint32_t>& partners, std::uint32_t id) {
+    const auto at = std::find(partners.begin(), partners.end(), id);
+    if (at == partners.end()) return;
+    *at = partners.back();
+    partners.pop_back();
 }
 
 /// The box, or InvalidBoxError naming `what` when it has NaN, infinity or min > max.

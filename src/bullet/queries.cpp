@@ -34,7 +34,15 @@ void Broadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBro
 
     std::vector<RayHit<float>> hits;
     if (is_zero(aabbMin) && is_zero(aabbMax)) {
+        // The World holds fat boxes: a ray enters each proxy's box no sooner than its fat box,
+        // so the fat boxes' hits hold every hit, to be measured on the boxes themselves.
         world_.cast_ray(ray, RayHits::all, hits);
+        std::size_t kept = 0;
+        for (const RayHit<float>& hit : hits) {
+            if (const auto t = ray_entry(ray, boxes_[hit.id]))
+                hits[kept++] = RayHit<float>{hit.id, static_cast<float>(*t)};
+        }
+        hits.resize(kept);
     } else {
         // A swept shape: btDbvt grows each box by the shape's box, [min - aabbMax, max - aabbMin].
         // The boxes so grown that the segment enters are those that overlap the segment's own
@@ -58,9 +66,9 @@ void Broadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBro
             }
             if (const auto t = ray_entry(ray, grown)) hits.push_back(RayHit<float>{id, static_cast<float>(*t)});
         }
-        std::sort(hits.begin(), hits.end(),
-                  [](const RayHit<float>& a, const RayHit<float>& b) { return a.t != b.t ? a.t < b.t : a.id < b.id; });
     }
+    std::sort(hits.begin(), hits.end(),
+              [](const RayHit<float>& a, const RayHit<float>& b) { return a.t != b.t ? a.t < b.t : a.id < b.id; });
     for (const RayHit<float>& hit : hits) {
         // The callback may have shortened the ray (a closer hit found).
         if (!(hit.t <= rayCallback.m_lambda_max)) break;
@@ -77,7 +85,8 @@ void Broadphase::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, bt
     world_.query(box, ids);
     for (const BoxId id : ids) {
         Proxy* proxy = live(id);
-        if (proxy == nullptr) continue;
+        // The World answers for the fat boxes: those whose proxy's box misses are left out.
+        if (proxy == nullptr || !overlaps(box, boxes_[id])) continue;
         if (!callback.process(proxy)) break;
     }
 }
@@ -104,6 +113,23 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     world_.clear();
     events_.clear();
     pairs_ = {};
+    boxes_ = {};
+    fat_boxes_ = {};
+    candidates_ = {};
+    merged_ = {};
+    found_ = {};
+    found_seen_ = {};
+    candidates_sorted_ = true;
+    index_ = {};
+    index_current_ = false;
+    index_ids_ = {};
+    index_boxes_ = {};
+    hits_ = {};
+    fresh_ = {};
+    stale_ = {};
+    stale_boxes_ = {};
+    marks_ = {};
+    incremental_ = false;
     slots_.clear();
     slots_.shrink_to_fit();
     free_ids_ = {};

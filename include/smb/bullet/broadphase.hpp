@@ -10,6 +10,8 @@
 #include <memory>
 #include <vector>
 
+#include "smb/box.hpp"
+#include "smb/box_index.hpp"
 #include "smb/pair.hpp"
 #include "smb/pair_events.hpp"
 #include "smb/settings.hpp"
@@ -27,7 +29,14 @@ namespace smb::bullet {
 /// each once. A pair enters the cache (addOverlappingPair) at the step its boxes begin to
 /// overlap and leaves it (removeOverlappingPair, with the dispatcher, so that its contact
 /// manifold is freed) at the step they stop; in between it stays, with its manifold. Bullet's own
-/// broad phases keep pairs of fattened boxes and drop them lazily; this one holds no fattening.
+/// broad phases keep pairs of fattened boxes and drop them lazily; this one keeps none.
+///
+/// The skin: smb's World holds each proxy's box grown by `skin` on every side (its fat box) and
+/// changes it only when the proxy's box leaves it, so that boxes that jitter in place (a pile
+/// that does not fall asleep) change nothing there; the pairs of fat boxes are tested on the
+/// proxies' own boxes before they reach the cache. A box that left its fat box by more than the
+/// skin moves fast and is held without one until it slows down. Skin 0: the World holds the
+/// proxies' boxes themselves.
 ///
 /// Filtering, as Bullet's pair cache decides it: while the cache has no overlap filter callback,
 /// proxies a and b pair when (a.group & b.mask) && (b.group & a.mask), read from the proxies at
@@ -56,9 +65,15 @@ namespace smb::bullet {
 /// Not thread-safe, as Bullet's broad phases.
 class Broadphase : public btBroadphaseInterface {
 public:
+    /// The skin unless one is given: Bullet's own margin for btDbvtBroadphase's boxes (gDbvtMargin,
+    /// in the world's length unit, metres for Bullet's default tolerances).
+    static constexpr float default_skin = 0.05f;
+
     /// `pair_cache`: the cache to maintain, as btDbvtBroadphase takes it (not owned; it must
-    /// outlive the broad phase). Null: a btHashedOverlappingPairCache of its own.
-    explicit Broadphase(const WorldSettings& settings = {}, btOverlappingPairCache* pair_cache = nullptr);
+    /// outlive the broad phase). Null: a btHashedOverlappingPairCache of its own. `skin`: how far
+    /// a box may move before smb's World sees it (above); ArgumentError unless finite and >= 0.
+    explicit Broadphase(const WorldSettings& settings = {}, btOverlappingPairCache* pair_cache = nullptr,
+                        float skin = default_skin);
     ~Broadphase() override;
     Broadphase(const Broadphase&) = delete;
     Broadphase& operator=(const Broadphase&) = delete;
@@ -84,20 +99,49 @@ public:
 
     /// Proxies alive.
     [[nodiscard]] std::size_t size() const noexcept { return live_; }
-    /// The smb world behind the broad phase (read only: its boxes are the proxies' boxes under
-    /// the proxies' m_uniqueId).
+    /// The smb world behind the broad phase (read only: its boxes are the proxies' fat boxes
+    /// under the proxies' m_uniqueId, each holding the proxy's box).
     [[nodiscard]] const World<float, 3>& world() const noexcept { return world_; }
 
 private:
     struct Proxy;
+    /// What the cache holds of a candidate: nothing (its boxes are apart), the pair, or nothing
+    /// because the cache refused the pair when the boxes began to overlap (asked again when they
+    /// next begin to).
+    enum class Held : std::uint8_t { apart, held, refused };
+    /// A pair of proxies whose fat boxes overlap (a < b).
+    struct Candidate {
+        std::uint32_t a = 0;
+        std::uint32_t b = 0;
+        Held held = Held::apart;
+    };
 
     /// The live proxy behind `proxy`; UnknownIdError for any other pointer.
     Proxy& own(const btBroadphaseProxy* proxy) const;
     /// The live proxy under `id`, or null (destroyed, possibly inside a callback).
     [[nodiscard]] Proxy* live(BoxId id) const noexcept;
+    /// Hands smb's World the fat boxes that the proxies' boxes left since the last call.
     void flush_moves();
     void sync_filters();
-    void apply_pair_events(btDispatcher* dispatcher);
+    /// The candidates after a detection: those whose fat boxes stopped overlapping leave (and
+    /// the cache, if it held them), those that began join; every candidate is tested.
+    void merge_candidates(btDispatcher* dispatcher);
+    /// Brings the cache to the candidates whose boxes overlap now (test_candidate on each).
+    void test_candidates(btDispatcher* dispatcher);
+    /// Adds the candidate's pair to the cache if its boxes began to overlap, removes it if they
+    /// stopped; the passes that rewrite the list call it for every candidate they write.
+    void test_candidate(Candidate& candidate, btDispatcher* dispatcher);
+    void settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher);
+    /// After a detection that followed incremental steps (the events then describe another
+    /// list): makes the candidates exactly pairs_, in order, keeping what the cache holds.
+    void reconcile_candidates(btDispatcher* dispatcher);
+    /// Without a detection: the candidates of the fat boxes changed in this step (fresh_), found
+    /// through index_ and among the stale boxes, replace those they had.
+    void update_fresh_candidates(btDispatcher* dispatcher);
+    void build_index();
+    /// Adds the pair to the cache and the partner lists; false when the cache refuses it.
+    bool hold_pair(Proxy& a, Proxy& b);
+    void drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher);
     /// Removes the pairs of `proxy` from the cache, and from its partners' lists.
     void remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher);
     void settle_restless_statics();
@@ -106,6 +150,33 @@ private:
     World<float, 3> world_;
     PairEvents events_;
     std::vector<Pair> pairs_;
+    float skin_ = default_skin;
+    /// By id: each proxy's box (empty, pairing with nothing, once destroyed) and its fat box.
+    std::vector<Box<float, 3>> boxes_;
+    std::vector<Box<float, 3>> fat_boxes_;
+    /// Sorted by (a, b): the pairs of fat boxes of smb's last detection.
+    std::vector<Candidate> candidates_;
+    std::vector<Candidate> merged_;
+    std::vector<Candidate> found_;
+    std::vector<std::uint8_t> found_seen_;
+    /// The candidates are in (a, b) order; those found between detections are appended.
+    bool candidates_sorted_ = true;
+    /// The fat boxes of the live proxies as they were when it was built; the stale ones (whose
+    /// fat box changed since) are listed in stale_.
+    BoxIndex<float, 3> index_;
+    bool index_current_ = false;
+    std::vector<BoxId> index_ids_;
+    std::vector<Box<float, 3>> index_boxes_;
+    std::vector<BoxId> hits_;
+    /// Ids whose fat box changed since the last calculateOverlappingPairs, and since index_ was
+    /// built; marks_ holds, by id, whether an id is listed in either, or in moved_ (fresh_mark,
+    /// stale_mark, moved_mark).
+    std::vector<std::uint32_t> fresh_;
+    std::vector<std::uint32_t> stale_;
+    std::vector<Box<float, 3>> stale_boxes_;
+    std::vector<std::uint8_t> marks_;
+    /// The candidates changed without a detection since the last one.
+    bool incremental_ = false;
     std::unique_ptr<btOverlappingPairCache> owned_cache_;
     btOverlappingPairCache* cache_ = nullptr;
 
@@ -125,8 +196,11 @@ private:
     /// each twice). When the cache holds a different number, someone else added or removed
     /// pairs there, and a destroyed proxy's pairs are found by scanning the cache instead.
     std::size_t pairs_held_ = 0;
-    /// Something changed since the last detection (a box, a proxy, a filter).
+    /// A proxy or a filter changed since the last detection: the next one detects again (fat
+    /// boxes alone are followed through fresh_).
     bool changed_ = true;
+    /// A proxy's box changed since the candidates were last tested.
+    bool boxes_changed_ = true;
     bool callback_mode_ = false;
 };
 

@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: MIT
+// Following the candidates between detections: when few fat boxes change in a step (a pile that
+// stays awake, most boxes jittering inside their skins), their candidates are found through an
+// index of the fat boxes and merged into the list, instead of detecting every pair again.
+//
+// Exact because the candidates stay every pair of fat boxes that overlap and pass the filters:
+// a pair whose fat boxes did not change keeps its standing, and every pair with a changed fat
+// box is found again, the partners whose fat boxes are as the index holds them through the
+// index, the others (the stale ones) one by one.
+
+#include <algorithm>
+
+#include "bullet/proxy.hpp"
+#include "smb/bullet/broadphase.hpp"
+#include "smb/filter.hpp"
+
+namespace smb::bullet {
+
+namespace {
+
+// Templates: the candidates are a private type of the broad phase.
+template <class Candidate>
+[[nodiscard]] bool comes_before(const Candidate& x, const Candidate& y) noexcept {
+    return detail::comes_before(x.a, x.b, y.a, y.b);
+}
+
+template <class Candidate>
+[[nodiscard]] bool same_pair(const Candidate& x, const Candidate& y) noexcept {
+    return x.a == y.a && x.b == y.b;
+}
+
+}  // namespace
+
+void Broadphase::build_index() {
+    index_ids_.clear();
+    index_boxes_.clear();
+    for (std::size_t id = 0; id < slots_.size(); ++id) {
+        if (live(id) == nullptr) continue;
+        index_ids_.push_back(id);
+        index_boxes_.push_back(fat_boxes_[id]);
+    }
+    index_.build(index_ids_, index_boxes_);
+    for (const std::uint32_t id : stale_) marks_[id] &= static_cast<std::uint8_t>(~detail::stale_mark);
+    stale_.clear();
+    index_current_ = true;
+}
+
+void Broadphase::update_fresh_candidates(btDispatcher* dispatcher) {
+    // Stale boxes are tested one by one for every fresh box: past a limit the index is built
+    // again (linear in the boxes, a fraction of a detection).
+    const std::size_t stale_limit = std::max<std::size_t>(64, live_ / 8);
+    if (!index_current_ || stale_.size() > stale_limit) build_index();
+    // Between detections no proxy is created, destroyed or refiltered (each makes the next
+    // calculateOverlappingPairs detect): the proxies named here are alive.
+    const auto pass = [this](std::uint32_t a, std::uint32_t b) {
+        return callback_mode_ || filters_pass(slots_[a]->filter, slots_[b]->filter);
+    };
+    const auto found = [this](std::uint32_t a, std::uint32_t b) {
+        found_.push_back(Candidate{std::min(a, b), std::max(a, b), Held::apart});
+    };
+    found_.clear();
+    // The stale boxes side by side, read once per fresh box.
+    stale_boxes_.clear();
+    for (const std::uint32_t id : stale_) stale_boxes_.push_back(fat_boxes_[id]);
+    for (const std::uint32_t fresh : fresh_) {
+        const Box<float, 3> fat = fat_boxes_[fresh];
+        index_.query(fat, hits_);
+        for (const BoxId hit : hits_) {
+            const auto other = static_cast<std::uint32_t>(hit);
+            if (other == fresh || (marks_[other] & detail::stale_mark) != 0) continue;
+            if (pass(fresh, other)) found(fresh, other);
+        }
+        for (std::size_t i = 0; i < stale_.size(); ++i) {
+            if (!overlaps(fat, stale_boxes_[i])) continue;
+            const std::uint32_t other = stale_[i];
+            if (other != fresh && pass(fresh, other)) found(fresh, other);
+        }
+    }
+    // Two fresh boxes find each other twice.
+    std::sort(found_.begin(), found_.end(), comes_before<Candidate>);
+    found_.erase(std::unique(found_.begin(), found_.end(), same_pair<Candidate>), found_.end());
+
+    // The candidates with a fresh end are those found; the others keep their standing. In place,
+    // each candidate tested as it is met: one pass, and those found anew go to the end (the list
+    // is sorted again before the next detection's merge, reconcile_candidates).
+    found_seen_.assign(found_.size(), 0);
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < candidates_.size(); ++i) {
+        const Candidate candidate = candidates_[i];
+        if (((marks_[candidate.a] | marks_[candidate.b]) & detail::fresh_mark) != 0) {
+            const auto at = std::lower_bound(found_.begin(), found_.end(), candidate, comes_before<Candidate>);
+            if (at == found_.end() || !same_pair(*at, candidate)) {
+                if (candidate.held != Held::held) continue;
+                // A callback of the cache may have destroyed a proxy on the way, its pairs with it.
+                Proxy* a = live(candidate.a);
+                Proxy* b = live(candidate.b);
+                if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+                continue;
+            }
+            found_seen_[static_cast<std::size_t>(at - found_.begin())] = 1;
+        }
+        candidates_[kept] = candidate;
+        test_candidate(candidates_[kept], dispatcher);
+        ++kept;
+    }
+    candidates_.resize(kept);
+    for (std::size_t i = 0; i < found_.size(); ++i) {
+        if (found_seen_[i] != 0) continue;
+        candidates_.push_back(found_[i]);
+        test_candidate(candidates_.back(), dispatcher);
+        candidates_sorted_ = false;
+    }
+    for (const std::uint32_t id : fresh_) marks_[id] &= static_cast<std::uint8_t>(~detail::fresh_mark);
+    fresh_.clear();
+}
+
+void Broadphase::reconcile_candidates(btDispatcher* dispatcher) {
+    std::sort(pairs_.begin(), pairs_.end());
+    if (!candidates_sorted_) std::sort(candidates_.begin(), candidates_.end(), comes_before<Candidate>);
+    candidates_sorted_ = true;
+    merged_.clear();
+    merged_.reserve(pairs_.size());
+    const auto keep = [this, dispatcher](const Candidate& candidate) {
+        merged_.push_back(candidate);
+        test_candidate(merged_.back(), dispatcher);
+    };
+    std::size_t next = 0;
+    const auto candidate_of = [](const Pair& pair) {
+        return Candidate{static_cast<std::uint32_t>(pair.a), static_cast<std::uint32_t>(pair.b), Held::apart};
+    };
+    for (const Candidate& candidate : candidates_) {
+        while (next < pairs_.size() && comes_before(candidate_of(pairs_[next]), candidate)) {
+            keep(candidate_of(pairs_[next++]));
+        }
+        if (next < pairs_.size() && same_pair(candidate_of(pairs_[next]), candidate)) {
+            ++next;
+            keep(candidate);
+            continue;
+        }
+        if (candidate.held != Held::held) continue;
+        Proxy* a = live(candidate.a);
+        Proxy* b = live(candidate.b);
+        if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+    }
+    while (next < pairs_.size()) keep(candidate_of(pairs_[next++]));
+    candidates_.swap(merged_);
+}
+
+}  // namespace smb::bullet

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: MIT
+// The skin: smb's World holds each proxy's fat box and detects the pairs of fat boxes (the
+// candidates); the cache gets the candidates whose own boxes overlap. Boxes that jitter inside
+// their fat boxes (a pile that stays awake) change nothing in the World, and a step costs a pass
+// over the candidates instead of a detection.
+//
+// Exact because every proxy's box lies inside its fat box: two boxes that overlap have fat boxes
+// that overlap, so their pair is a candidate, and every candidate is tested on the boxes.
+
+#include <span>
+
+#include "bullet/proxy.hpp"
+#include "smb/bullet/broadphase.hpp"
+
+namespace smb::bullet {
+
+void Broadphase::flush_moves() {
+    if (moved_.empty()) return;
+    move_ids_.clear();
+    move_boxes_.clear();
+    for (const std::uint32_t id : moved_) {
+        // A proxy destroyed since has an empty box, inside any fat box.
+        const Box<float, 3>& box = boxes_[id];
+        const Box<float, 3>& fat = fat_boxes_[id];
+        if (detail::contains(fat, box)) continue;
+        // A box that left its fat box by less than the skin drifts, and a new skin holds it for a
+        // while; one that went further moves fast and would leave any skin at the next step,
+        // where its fat box would only bring the World more pairs.
+        const bool drifting = detail::contains(detail::grown(fat, skin_), box);
+        move_ids_.push_back(id);
+        move_boxes_.push_back(drifting ? detail::grown(box, skin_) : box);
+    }
+    if (!move_ids_.empty()) world_.update(move_ids_, move_boxes_);
+    for (const std::uint32_t id : moved_) marks_[id] &= static_cast<std::uint8_t>(~detail::moved_mark);
+    moved_.clear();
+    for (std::size_t i = 0; i < move_ids_.size(); ++i) {
+        const auto id = static_cast<std::uint32_t>(move_ids_[i]);
+        fat_boxes_[id] = move_boxes_[i];
+        if ((marks_[id] & detail::fresh_mark) == 0) fresh_.push_back(id);
+        if ((marks_[id] & detail::stale_mark) == 0) stale_.push_back(id);
+        marks_[id] |= detail::fresh_mark | detail::stale_mark;
+        Proxy& proxy = *slots_[id];
+        proxy.calm_steps = 0;
+        if (proxy.held_static) {
+            world_.set_static(id, false);
+            proxy.held_static = false;
+        }
+        if (proxy.static_class && !proxy.restless) {
+            restless_.push_back(id);
+            proxy.restless = true;
+        }
+    }
+}
+
+bool Broadphase::hold_pair(Proxy& a, Proxy& b) {
+    // Ids are the proxies' m_uniqueId, an int: they fit the partner lists' 32 bits.
+    const auto id_a = static_cast<std::uint32_t>(a.m_uniqueId);
+    const auto id_b = static_cast<std::uint32_t>(b.m_uniqueId);
+    // The partners and the count are kept before the cache is called, so that they hold what the
+    // cache holds should a callback destroy a proxy inside the call.
+    a.partners.push_back(id_b);
+    b.partners.push_back(id_a);
+    ++pairs_held_;
+    if (cache_->addOverlappingPair(&a, &b) != nullptr) return true;
+    // A cache may refuse a pair (btNullPairCache refuses all): then it is not held.
+    if (a.alive && b.alive) {
+        detail::erase_partner(a.partners, id_b);
+        detail::erase_partner(b.partners, id_a);
+        --pairs_held_;
+    }
+    return false;
+}
+
+void Broadphase::drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher) {
+    detail::erase_partner(a.partners, static_cast<std::uint32_t>(b.m_uniqueId));
+    detail::erase_partner(b.partners, static_cast<std::uint32_t>(a.m_uniqueId));
+    --pairs_held_;
+    cache_->removeOverlappingPair(&a, &b, dispatcher);
+}
+
+void Broadphase::merge_candidates(btDispatcher* dispatcher) {
+    const std::span<const Pair> ended = events_.ended();
+    const std::span<const Pair> begun = events_.begun();
+    if (ended.empty() && begun.empty()) {
+        test_candidates(dispatcher);
+        return;
+    }
+    const auto candidate_of = [](const Pair& pair) {
+        return Candidate{static_cast<std::uint32_t>(pair.a), static_cast<std::uint32_t>(pair.b), Held::apart};
+    };
+    // Both lists of events are sorted as the candidates are, and the ended ones are candidates:
+    // one merge. An id given to a new proxy ends its old pairs and begins its new ones, the same
+    // pair possibly among both; the ended one is met first.
+    merged_.clear();
+    merged_.reserve(candidates_.size() - ended.size() + begun.size());
+    // Each candidate kept is tested on the boxes as it is written: one pass.
+    const auto keep = [this, dispatcher](const Candidate& candidate) {
+        merged_.push_back(candidate);
+        test_candidate(merged_.back(), dispatcher);
+    };
+    std::size_t next_ended = 0;
+    std::size_t next_begun = 0;
+    for (const Candidate& candidate : candidates_) {
+        const Pair pair{candidate.a, candidate.b};
+        while (next_begun < begun.size() && begun[next_begun] < pair) keep(candidate_of(begun[next_begun++]));
+        if (next_ended < ended.size() && ended[next_ended] == pair) {
+            ++next_ended;
+            if (candidate.held != Held::held) continue;
+            // A proxy destroyed took its pairs with it (remove_pairs_of).
+            Proxy* a = live(candidate.a);
+            Proxy* b = live(candidate.b);
+            if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+            continue;
+        }
+        keep(candidate);
+    }
+    while (next_begun < begun.size()) keep(candidate_of(begun[next_begun++]));
+    candidates_.swap(merged_);
+}
+
+void Broadphase::test_candidates(btDispatcher* dispatcher) {
+    for (Candidate& candidate : candidates_) test_candidate(candidate, dispatcher);
+}
+
+void Broadphase::settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher) {
+    // The cache's callbacks may create and destroy proxies on the way: boxes_ may grow (it is
+    // indexed afresh for every candidate), a destroyed proxy's box pairs with nothing and its
+    // pairs left the cache with it, and a proxy created has no candidate before the next
+    // detection. The candidates themselves change only in the passes that call this.
+    if (!overlap) {
+        if (candidate.held == Held::held) {
+            Proxy* a = live(candidate.a);
+            Proxy* b = live(candidate.b);
+            if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+        }
+        candidate.held = Held::apart;
+        return;
+    }
+    Proxy* a = live(candidate.a);
+    Proxy* b = live(candidate.b);
+    if (a == nullptr || b == nullptr) return;  // not reached: a destroyed proxy's box is empty
+    if (callback_mode_) {
+        // A filter callback may change its mind at any step: it is asked at every one, as the
+        // cache asks it for every pair.
+        const bool wanted = cache_->needsBroadphaseCollision(a, b);
+        if (wanted == (candidate.held == Held::held)) return;
+        if (!wanted) {
+            drop_pair(*a, *b, dispatcher);
+            candidate.held = Held::apart;
+            return;
+        }
+    }
+    candidate.held = hold_pair(*a, *b) ? Held::held : Held::refused;
+}
+
+}  // namespace smb::bullet
