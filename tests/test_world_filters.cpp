@@ -467,6 +467,26 @@ TEST(WorldFilters, StaticsTouchingWithinAFloatOfAMovingBoxPairExactly) {
 /// box's side, quantized_bounds.hpp) of the moving boxes' faces, on every axis and both sides,
 /// and moving boxes that creep across them by a fraction of a step at each detection, inside
 /// their fat boxes: every detection against brute force.
+/// Brute force over statics (every id below every moving id) and moving boxes: the pairs of a
+/// static and a moving box and of two moving boxes, sorted.
+template <std::floating_point Real, int Dim>
+std::vector<Pair> static_and_moving_pairs(const std::map<BoxId, Box<Real, Dim>>& statics,
+                                          const std::map<BoxId, Box<Real, Dim>>& moving) {
+    std::vector<Pair> expected;
+    for (const auto& [sid, s] : statics) {
+        for (const auto& [mid, b] : moving) {
+            if (overlaps(s, b)) expected.push_back({sid, mid});
+        }
+    }
+    for (auto a = moving.begin(); a != moving.end(); ++a) {
+        for (auto b = std::next(a); b != moving.end(); ++b) {
+            if (overlaps(a->second, b->second)) expected.push_back({a->first, b->first});
+        }
+    }
+    std::sort(expected.begin(), expected.end());
+    return expected;
+}
+
 template <std::floating_point Real, int Dim>
 void check_statics_within_a_lattice_step() {
     using B = Box<Real, Dim>;
@@ -520,18 +540,7 @@ void check_statics_within_a_lattice_step() {
             world.update(mid, b);
         }
         world.detect(pairs);
-        std::vector<Pair> expected;
-        for (const auto& [sid, s] : statics) {
-            for (const auto& [mid, b] : moving) {
-                if (overlaps(s, b)) expected.push_back({sid, mid});
-            }
-        }
-        for (auto a = moving.begin(); a != moving.end(); ++a) {
-            for (auto b = std::next(a); b != moving.end(); ++b) {
-                if (overlaps(a->second, b->second)) expected.push_back({a->first, b->first});
-            }
-        }
-        std::sort(expected.begin(), expected.end());
+        const std::vector<Pair> expected = static_and_moving_pairs(statics, moving);
         ASSERT_TRUE(same_pairs(pairs, expected)) << "detection " << t;
     }
 }
@@ -590,18 +599,7 @@ void check_statics_of_mixed_sizes(std::uint64_t seed) {
         }
         world.update(ids, boxes);
         world.detect(pairs);
-        std::vector<Pair> expected;
-        for (const auto& [sid, s] : statics) {
-            for (const auto& [mid, b] : moving) {
-                if (overlaps(s, b)) expected.push_back({sid, mid});
-            }
-        }
-        for (auto a = moving.begin(); a != moving.end(); ++a) {
-            for (auto b = std::next(a); b != moving.end(); ++b) {
-                if (overlaps(a->second, b->second)) expected.push_back({a->first, b->first});
-            }
-        }
-        std::sort(expected.begin(), expected.end());
+        const std::vector<Pair> expected = static_and_moving_pairs(statics, moving);
         ASSERT_TRUE(same_pairs(pairs, expected)) << "step " << step;
     }
 }
