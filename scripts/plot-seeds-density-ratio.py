@@ -5,9 +5,9 @@
 Reads <dir>/<pipeline>-3d-seed<S>-4.2.csv and -4.3.csv, one pair per pipeline and seed (the
 full-4.2.csv and full-4.3.csv of `scripts/reproduce.py --experiments 4.2,4.3 --seed S --pipeline P`),
 and writes into the same folder:
-    seeds-fig09-time-vs-density.png      detection time against packing density E per N
+    seeds-fig09-time-vs-density.png      detection time (wall, processor) against packing density E per N
     seeds-fig10-memory-vs-side.png       peak RSS and bytes held against cube side x per N
-    seeds-fig11-time-vs-size-ratio.png   detection time against size ratio H per N
+    seeds-fig11-time-vs-size-ratio.png   detection time (wall, processor) against size ratio H per N
     seeds-fig12-memory-vs-size-ratio.png peak RSS and bytes held against H per N
     seeds-4.2-4.3-summary.md             spreads across E and H, seed spread, bytes per box
 One panel per pipeline. Each point is the median over the seeds of the median step time (or of
@@ -90,27 +90,32 @@ def figure_time(runs, experiment, folder, subtitle, written):
     else:
         title, xlabel, name = "Fig. 11: size ratio against detection time", "size ratio H (log scale)", \
             "seeds-fig11-time-vs-size-ratio.png"
-    figure, axes = plot_seeds.panels(1, title + subtitle, xlabel, ["median step time (s)"])
-    for panel, pipeline in zip(axes[0], PIPELINES):
-        panel.set_title(plot_seeds.PIPELINE_TITLES[pipeline], fontsize=10)
-        for marker, (boxes, points) in zip(MARKERS, sorted(runs.get(pipeline, {}).items())):
-            varied, times = series(points, "step_median_s")
-            if experiment == "4.2":
-                x = np.array([np.median([row["packing_density"] for row in points[v].values()]) for v in varied])
+    # The processor time row: on a shared machine the wall time also counts the waits for a CPU.
+    figure, axes = plot_seeds.panels(2, title + subtitle, xlabel,
+                                     ["median step time, wall (s)", "median step time, processor (s)"],
+                                     height=4.2)
+    for index, pipeline in enumerate(PIPELINES):
+        for row, column in enumerate(("step_median_s", "step_cpu_median_s")):
+            panel = axes[row][index]
+            panel.set_title(plot_seeds.PIPELINE_TITLES[pipeline], fontsize=10)
+            for marker, (boxes, points) in zip(MARKERS, sorted(runs.get(pipeline, {}).items())):
+                varied, times = series(points, column)
+                if experiment == "4.2":
+                    x = np.array([np.median([r["packing_density"] for r in points[v].values()]) for v in varied])
+                else:
+                    x = varied
+                draw_points(panel, x, times, marker, f"N = {boxes / 1e3:.0f}k ({seed_label(points)})")
+            if experiment == "4.3":
+                panel.set_xscale("log")
+                ratios = sorted({h for points in runs.get(pipeline, {}).values() for h in points})
+                panel.set_xticks(ratios, [f"{h:.3g}" for h in ratios], fontsize=7)
+                panel.minorticks_off()
             else:
-                x = varied
-            draw_points(panel, x, times, marker, f"N = {boxes / 1e3:.0f}k ({seed_label(points)})")
-        if experiment == "4.3":
-            panel.set_xscale("log")
-            ratios = sorted({h for points in runs.get(pipeline, {}).values() for h in points})
-            panel.set_xticks(ratios, [f"{h:.3g}" for h in ratios], fontsize=7)
-            panel.minorticks_off()
-        else:
-            panel.set_xlim(left=0)
-        panel.set_ylim(0, panel.get_ylim()[1] * 1.25)  # room for the legend above the lines
-        if panel.get_legend_handles_labels()[0]:
-            panel.legend(title="median of seeds; bars: min–max", fontsize=8, title_fontsize=8, ncol=3,
-                         loc="upper left")
+                panel.set_xlim(left=0)
+            panel.set_ylim(0, panel.get_ylim()[1] * 1.25)  # room for the legend above the lines
+            if panel.get_legend_handles_labels()[0]:
+                panel.legend(title="median of seeds; bars: min–max", fontsize=8, title_fontsize=8, ncol=3,
+                             loc="upper left")
     plot_seeds.save(figure, folder, name, written)
 
 
@@ -154,16 +159,18 @@ def summary_table(runs, experiment):
     head = "E" if experiment == "4.2" else "H"
     lines = [f"| pipeline | N | {symbol} values (seeds per point) | {head} range | t min–max (s) | "
              f"t across {head}: max/min | CPU t across {head}: max/min | "
-             f"t at {'densest / sparsest' if experiment == '4.2' else 'H = min / H = max'} | "
-             "µs/box min–max | seed spread: median, max | held B/box | held across "
-             f"{symbol}: max/min | peak RSS B/box | peak RSS across {symbol}: max/min | pairs per box |",
-             "|" + "---|" * 15]
+             f"t at {'densest / sparsest' if experiment == '4.2' else 'H = min / H = max'}: wall, CPU | "
+             "µs/box min–max | seed spread: median, max | CPU seed spread: median, max | CPU / wall | "
+             f"held B/box | held across {symbol}: max/min | peak RSS B/box | peak RSS across {symbol}: max/min | "
+             "pairs per box |",
+             "|" + "---|" * 17]
     for pipeline in PIPELINES:
         for boxes, points in sorted(runs.get(pipeline, {}).items()):
             varied, times = series(points, "step_median_s")
             medians = np.array([np.median(t) for t in times])
             cpu = np.array([np.median(t) for t in series(points, "step_cpu_median_s")[1]])
             seed_spread = np.array([spread(t) for t in times if len(t) > 1])
+            cpu_seed_spread = np.array([spread(t) for t in series(points, "step_cpu_median_s")[1] if len(t) > 1])
             rows = [row for v in varied for row in points[v].values()]
             density = np.array([row["packing_density"] for row in rows])
             ratio = np.array([row["size_ratio"] for row in rows])
@@ -174,7 +181,7 @@ def summary_table(runs, experiment):
             per_box = medians / boxes * 1e6
             pairs = np.array([row["pairs_median"] / row["boxes_median"] for row in rows])
             # Sorted by x or H, the first point is the densest scene (4.2) or the most uniform sizes (4.3).
-            ends = medians[0] / medians[-1]
+            ends = f"{medians[0] / medians[-1]:.2f}, {cpu[0] / cpu[-1]:.2f}"
             if experiment == "4.2":
                 varied_range = f"{density.min():.3f}–{density.max():.3f}"
             else:
@@ -182,8 +189,11 @@ def summary_table(runs, experiment):
             counts = "/".join(str(len(points[v])) for v in varied)
             cells = [pipeline, f"{boxes / 1e3:.0f}k", f"{len(varied)} ({counts})", varied_range,
                      f"{medians.min():.3f}–{medians.max():.3f}", f"{spread(medians):.2f}", f"{spread(cpu):.2f}",
-                     f"{ends:.2f}", f"{per_box.min():.3f}–{per_box.max():.3f}",
+                     ends, f"{per_box.min():.3f}–{per_box.max():.3f}",
                      f"{np.median(seed_spread):.2f}, {seed_spread.max():.2f}" if len(seed_spread) else "–",
+                     (f"{np.median(cpu_seed_spread):.2f}, {cpu_seed_spread.max():.2f}" if len(cpu_seed_spread)
+                      else "–"),
+                     f"{np.median([r['step_cpu_median_s'] / r['step_median_s'] for r in rows]):.2f}",
                      f"{held.min():.0f}–{held.max():.0f}", f"{spread(held_total):.4f}",
                      f"{peak.min():.0f}–{peak.max():.0f}", f"{spread(peak_total):.4f}",
                      f"{pairs.min():.3f}–{pairs.max():.3f}"]
@@ -215,11 +225,12 @@ def summary_lines(runs, source):
              f"Written by scripts/plot-seeds-density-ratio.py from {source}: seeds {', '.join(map(str, seeds))}, "
              f"{'/'.join(map(str, steps))} timed steps after the build step per run, {len(rows)} runs, the "
              f"1-minute load average at the start of a run {min(loads):.1f}–{max(loads):.1f}, the CPU time of a "
-             f"step {min(cpu_share):.2f}–{max(cpu_share):.2f} of its wall time (median {np.median(cpu_share):.2f}).\n",
+             f"step {min(cpu_share):.2f}–{max(cpu_share):.2f} of its wall time "
+             f"(median {np.median(cpu_share):.2f}).\n",
              "t is the median step time of a run; each point takes the median of t over the seeds. Across E (or x, "
              "H): max/min over the points of one N of those medians (CPU: the same for the median processor time "
              "of a step). Densest / sparsest (4.2: x = 100 over x = 200) and H = min / H = max (4.3: H = 1.111 over "
-             "H = 10): the ratio of the end points, above 1 where the denser or more uniform scene is slower. "
+             "H = 10): the ratio of the end points (wall, then processor time), above 1 where the denser or more uniform scene is slower. "
              "Seed spread: max/min over the seeds of t at one point, the median over the points and the largest. "
              "B/box: bytes per box of the final N, median of the seeds, range over the points; across x or H: "
              "max/min over the points of the median bytes (1.0000 is the same memory at every point).\n",
