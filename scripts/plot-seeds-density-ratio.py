@@ -230,7 +230,8 @@ def summary_lines(runs, source):
              "t is the median step time of a run; each point takes the median of t over the seeds. Across E (or x, "
              "H): max/min over the points of one N of those medians (CPU: the same for the median processor time "
              "of a step). Densest / sparsest (4.2: x = 100 over x = 200) and H = min / H = max (4.3: H = 1.111 over "
-             "H = 10): the ratio of the end points (wall, then processor time), above 1 where the denser or more uniform scene is slower. "
+             "H = 10): the ratio of the end points (wall, then processor time), above 1 where the denser or more "
+             "uniform scene is slower. "
              "Seed spread: max/min over the seeds of t at one point, the median over the points and the largest. "
              "B/box: bytes per box of the final N, median of the seeds, range over the points; across x or H: "
              "max/min over the points of the median bytes (1.0000 is the same memory at every point).\n",
