@@ -202,7 +202,7 @@ def summary_lines(runs, source):
     lines = ["# Section 4.1 over several seeds, both pipelines: fits and spreads\n",
              f"Written by scripts/plot-seeds.py from {source}: seeds {', '.join(map(str, seed_names))}, "
              f"{'/'.join(map(str, steps))} timed steps after the build step per run, the 1-minute load average "
-             f"at the end of a run {min(loads):.1f}–{max(loads):.1f}.\n",
+             f"at the start of a run {min(loads):.1f}–{max(loads):.1f}.\n",
              "t is the median step time of a run. b and a: least-squares line t = a + b·N over every seed's points "
              "(N = the median box count of the timed steps); r: Pearson's correlation coefficient of t against N, "
              "pooled and per seed (the paper's Fig. 7); k: exponent of t ~ N^k on log-log axes, pooled. µs/box: "
