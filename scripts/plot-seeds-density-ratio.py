@@ -261,12 +261,8 @@ def main():
     for experiment in sorted(runs):
         figure_time(runs[experiment], experiment, args.dir, subtitle, written)
         figure_memory(runs[experiment], experiment, args.dir, subtitle, written)
-    summary_path = os.path.join(args.dir, "seeds-4.2-4.3-summary.md")
-    with open(summary_path, "w") as out:
-        out.write("\n".join(summary_lines(runs, os.path.relpath(args.dir, REPO_ROOT))) + "\n")
-    written.append(summary_path)
-    for path in written:
-        print(os.path.relpath(path))
+    plot_seeds.write_summary(args.dir, "seeds-4.2-4.3-summary.md",
+                             summary_lines(runs, os.path.relpath(args.dir, REPO_ROOT)), written)
 
 
 if __name__ == "__main__":

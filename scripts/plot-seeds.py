@@ -111,6 +111,16 @@ def save(figure, folder, name, written):
     written.append(path)
 
 
+def write_summary(folder, name, lines, written):
+    """Writes the summary's lines to folder/name, then prints every file written, relative."""
+    path = os.path.join(folder, name)
+    with open(path, "w") as out:
+        out.write("\n".join(lines) + "\n")
+    written.append(path)
+    for done in written:
+        print(os.path.relpath(done))
+
+
 def figure_time(runs, folder, subtitle, written, per_box):
     name = "Detection time per box against N" if per_box else "Fig. 6: N against detection time"
     ylabel = "median step time / N (µs)" if per_box else "median step time (s)"
@@ -272,12 +282,7 @@ def main():
     figure_time(runs, args.dir, subtitle, written, per_box=True)
     figure_correlation(runs, args.dir, subtitle, written)
     figure_memory(runs, args.dir, subtitle, written)
-    summary_path = os.path.join(args.dir, "seeds-summary.md")
-    with open(summary_path, "w") as out:
-        out.write("\n".join(summary_lines(runs, os.path.relpath(args.dir, REPO_ROOT))) + "\n")
-    written.append(summary_path)
-    for path in written:
-        print(os.path.relpath(path))
+    write_summary(args.dir, "seeds-summary.md", summary_lines(runs, os.path.relpath(args.dir, REPO_ROOT)), written)
 
 
 if __name__ == "__main__":
