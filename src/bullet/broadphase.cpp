@@ -134,10 +134,10 @@ void Broadphase::remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher) {
 void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax,
                          btDispatcher* /*dispatcher*/) {
     Proxy& own_proxy = own(proxy);
-    const Box<float, 3> box = detail::checked_box(aabbMin, aabbMax, "setAabb");
     // btCollisionWorld sets every object's box at every step, resting or not: an unchanged box
-    // costs nothing further.
+    // costs nothing further (it was checked when it was set; a NaN never compares equal).
     if (own_proxy.m_aabbMin == aabbMin && own_proxy.m_aabbMax == aabbMax) return;
+    const Box<float, 3> box = detail::checked_box(aabbMin, aabbMax, "setAabb");
     const auto id = static_cast<std::uint32_t>(own_proxy.m_uniqueId);
     // Inside its fat box the box changes nothing in the World; flush_moves looks again at those
     // that left it (they may come back before it).

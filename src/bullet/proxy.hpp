@@ -43,6 +43,17 @@ inline constexpr std::uint8_t moved_mark = 4;
 inline constexpr std::uint8_t changed_mark = 8;
 }  // namespace detail
 
+namespace detail {
+/// smb::overlaps without an early exit: the passes over the candidates meet pairs apart along
+/// any axis, in no order a branch predictor learns. The boxes hold no NaN (checked_box), so
+/// `<=` says what `!(>)` says.
+[[nodiscard]] inline bool overlaps_branchless(const Box<float, 3>& a, const Box<float, 3>& b) noexcept {
+    return static_cast<bool>(static_cast<int>(a.min[0] <= b.max[0]) & static_cast<int>(b.min[0] <= a.max[0]) &
+                             static_cast<int>(a.min[1] <= b.max[1]) & static_cast<int>(b.min[1] <= a.max[1]) &
+                             static_cast<int>(a.min[2] <= b.max[2]) & static_cast<int>(b.min[2] <= a.max[2]));
+}
+}  // namespace detail
+
 // Here, inline: setAabb asks it for every proxy at every step.
 inline Broadphase::Proxy& Broadphase::own(const btBroadphaseProxy* proxy) const {
     if (proxy != nullptr && proxy->m_uniqueId >= 0) {
@@ -76,7 +87,7 @@ inline void Broadphase::test_candidate(Candidate& candidate, btDispatcher* dispa
 
 // Here, inline: the passes over the candidates call it for every one they find anew.
 inline void Broadphase::test_new_candidate(Candidate& candidate, btDispatcher* dispatcher) {
-    const bool overlap = overlaps(boxes_[candidate.a], boxes_[candidate.b]);
+    const bool overlap = detail::overlaps_branchless(boxes_[candidate.a], boxes_[candidate.b]);
     // Most candidates stay as they were: apart and still apart, or held (or refused) and still
     // overlapping. A filter callback is asked at every step.
     if (!callback_mode_ && overlap == (candidate.held != Held::apart)) return;
