@@ -54,7 +54,7 @@ PileScene::~PileScene() { owned_.remove_all(world_); }
 
 void PileScene::drop_body(const btVector3& origin) {
     // Two boxes for every sphere.
-    const bool sphere = owned_.bodies.size() % 3 == 0;
+    const bool sphere = settings_.spheres && owned_.bodies.size() % 3 == 0;
     btRigidBody& body =
         owned_.add(world_, sphere ? static_cast<btCollisionShape&>(sphere_shape_) : box_shape_, 1.0f, origin);
     body.setDamping(settings_.linear_damping, settings_.angular_damping);

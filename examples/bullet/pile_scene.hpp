@@ -23,6 +23,11 @@ struct PileSettings {
     /// (0: never).
     int churn_every = 25;
     std::size_t churn = 20;
+    /// Every third body poured is a sphere while true; all are boxes while false. With spheres
+    /// the settled pile keeps creeping (some body somewhere always moves) and Bullet keeps its
+    /// one island awake; boxes alone, poured in columns, come to rest and Bullet puts them to
+    /// sleep (with the damping and thresholds of the step benchmark's damped scenes).
+    bool spheres = true;
     /// The plough moves only while true.
     bool plough = true;
     /// Bullet never deactivates the plough while true. A kinematic body Bullet keeps awake wakes

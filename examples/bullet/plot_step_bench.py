@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
 """Plots smb_bullet_step_bench's CSV files: broad-phase and whole-step time per step, steady
-state, for each broad phase, scene and body count.
+state, for each broad phase, scene and body count (the mean of a broad phase's passes, where a
+run repeats it).
 
     /usr/bin/python3 examples/bullet/plot_step_bench.py bench/results/bullet/step_*.csv \
         --out bench/results/bullet/step.png
@@ -28,19 +29,19 @@ def main():
             rows += [r for r in csv.DictReader(f) if r["part"] == "steady"]
     groups = sorted({(int(r["bodies"]), r["scene"]) for r in rows})
     broadphases = [b for b in NAMES if any(r["broadphase"] == b for r in rows)]
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, axes = plt.subplots(1, 2, figsize=(max(11.0, 2.6 * len(groups)), 4.6))
     for axis, column, title in ((axes[0], "broadphase_ms", "broad phase"), (axes[1], "step_ms", "whole step")):
         width = 0.8 / len(broadphases)
         for i, name in enumerate(broadphases):
             values = []
             for bodies, scene in groups:
                 match = [r for r in rows if r["broadphase"] == name and int(r["bodies"]) == bodies and r["scene"] == scene]
-                values.append(float(match[0][column]) if match else 0.0)
+                values.append(sum(float(r[column]) for r in match) / len(match) if match else 0.0)
             axis.bar([g + i * width for g in range(len(groups))], values, width, label=NAMES[name])
         axis.set_xticks([g + 0.4 - width / 2 for g in range(len(groups))])
-        axis.set_xticklabels([f"{bodies:,} bodies\n{scene}" for bodies, scene in groups])
+        axis.set_xticklabels([f"{bodies:,}\n{scene}" for bodies, scene in groups], fontsize=8)
         axis.set_yscale("log")
-        axis.set_ylabel("ms per step (steady state)")
+        axis.set_ylabel("ms per step (steady state, mean of passes)")
         axis.set_title(f"Bullet pile: {title}")
         axis.grid(axis="y", alpha=0.3)
     handles, labels = axes[0].get_legend_handles_labels()

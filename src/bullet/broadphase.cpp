@@ -90,7 +90,7 @@ btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVec
     proxy.partners.clear();
     ++live_;
     changed_ = true;
-    boxes_changed_ = true;
+    mark_changed(id);
     // The bits reach smb at the next calculateOverlappingPairs (sync_filters), as later changes
     // to them do.
     return &proxy;
@@ -104,6 +104,7 @@ void Broadphase::destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher
     world_.remove(id);
     retired_ids_.push_back(id);
     boxes_[id] = detail::empty_box();
+    mark_changed(id);
     own_proxy.alive = false;
     own_proxy.m_clientObject = nullptr;
     --live_;
@@ -133,10 +134,10 @@ void Broadphase::remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher) {
 void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax,
                          btDispatcher* /*dispatcher*/) {
     Proxy& own_proxy = own(proxy);
-    const Box<float, 3> box = detail::checked_box(aabbMin, aabbMax, "setAabb");
     // btCollisionWorld sets every object's box at every step, resting or not: an unchanged box
-    // costs nothing further.
+    // costs nothing further (it was checked when it was set; a NaN never compares equal).
     if (own_proxy.m_aabbMin == aabbMin && own_proxy.m_aabbMax == aabbMax) return;
+    const Box<float, 3> box = detail::checked_box(aabbMin, aabbMax, "setAabb");
     const auto id = static_cast<std::uint32_t>(own_proxy.m_uniqueId);
     // Inside its fat box the box changes nothing in the World; flush_moves looks again at those
     // that left it (they may come back before it).
@@ -147,7 +148,7 @@ void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, con
     own_proxy.m_aabbMin = aabbMin;
     own_proxy.m_aabbMax = aabbMax;
     boxes_[id] = box;
-    boxes_changed_ = true;
+    mark_changed(id);
 }
 
 void Broadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const {
@@ -181,6 +182,7 @@ void Broadphase::sync_filters() {
 void Broadphase::set_callback_mode(bool callback_mode) {
     callback_mode_ = callback_mode;
     changed_ = true;
+    test_all_ = true;
     // sync_filters gives the bits back to smb.
     if (!callback_mode_) return;
     // Bullet's cache asks the callback alone, bits or not: smb must report every overlap, and
@@ -220,6 +222,7 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
     // Filters first, so that a static proxy that moved since is held dynamic by flush_moves.
     const bool callback_mode = cache_->getOverlapFilterCallback() != nullptr;
     if (callback_mode != callback_mode_) set_callback_mode(callback_mode);
+    test_all_ = test_all_ || callback_mode_;
     if (!callback_mode_) sync_filters();
     flush_moves();
     // A proxy or a filter changed, or many fat boxes: smb detects the candidates again. A few
@@ -243,8 +246,9 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
         }
         incremental_ = false;
         index_current_ = false;
-        for (const std::uint32_t id : fresh_) marks_[id] &= detail::moved_mark;
-        for (const std::uint32_t id : stale_) marks_[id] &= detail::moved_mark;
+        constexpr auto listed = static_cast<std::uint8_t>(~(detail::fresh_mark | detail::stale_mark));
+        for (const std::uint32_t id : fresh_) marks_[id] &= listed;
+        for (const std::uint32_t id : stale_) marks_[id] &= listed;
         fresh_.clear();
         stale_.clear();
         // The events named the ids destroyed before the detection for the last time.
@@ -256,8 +260,10 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
         incremental_ = true;
         tested = true;
     }
-    if (!tested && (boxes_changed_ || callback_mode_)) test_candidates(dispatcher);
-    boxes_changed_ = false;
+    if (!tested && (!changed_ids_.empty() || test_all_)) test_candidates(dispatcher);
+    for (const std::uint32_t id : changed_ids_) marks_[id] &= static_cast<std::uint8_t>(~detail::changed_mark);
+    changed_ids_.clear();
+    test_all_ = false;
     settle_restless_statics();
 }
 

@@ -107,7 +107,7 @@ void Broadphase::update_fresh_candidates(btDispatcher* dispatcher) {
     for (std::size_t i = 0; i < found_.size(); ++i) {
         if (found_seen_[i] != 0) continue;
         candidates_.push_back(found_[i]);
-        test_candidate(candidates_.back(), dispatcher);
+        test_new_candidate(candidates_.back(), dispatcher);
         candidates_sorted_ = false;
     }
     for (const std::uint32_t id : fresh_) marks_[id] &= static_cast<std::uint8_t>(~detail::fresh_mark);
@@ -124,13 +124,17 @@ void Broadphase::reconcile_candidates(btDispatcher* dispatcher) {
         merged_.push_back(candidate);
         test_candidate(merged_.back(), dispatcher);
     };
+    const auto add = [this, dispatcher](const Candidate& candidate) {
+        merged_.push_back(candidate);
+        test_new_candidate(merged_.back(), dispatcher);
+    };
     std::size_t next = 0;
     const auto candidate_of = [](const Pair& pair) {
         return Candidate{static_cast<std::uint32_t>(pair.a), static_cast<std::uint32_t>(pair.b), Held::apart};
     };
     for (const Candidate& candidate : candidates_) {
         while (next < pairs_.size() && comes_before(candidate_of(pairs_[next]), candidate)) {
-            keep(candidate_of(pairs_[next++]));
+            add(candidate_of(pairs_[next++]));
         }
         if (next < pairs_.size() && same_pair(candidate_of(pairs_[next]), candidate)) {
             ++next;
@@ -142,7 +146,7 @@ void Broadphase::reconcile_candidates(btDispatcher* dispatcher) {
         Proxy* b = live(candidate.b);
         if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
     }
-    while (next < pairs_.size()) keep(candidate_of(pairs_[next++]));
+    while (next < pairs_.size()) add(candidate_of(pairs_[next++]));
     candidates_.swap(merged_);
 }
 

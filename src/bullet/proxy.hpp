@@ -35,6 +35,23 @@ struct Broadphase::Proxy : btBroadphaseProxy {
 namespace detail {
 /// UnknownIdError, out of the way of the calls that check their proxy.
 [[noreturn]] void throw_unknown_proxy();
+
+/// marks_: the id is listed in fresh_, in stale_, in moved_, in changed_ids_.
+inline constexpr std::uint8_t fresh_mark = 1;
+inline constexpr std::uint8_t stale_mark = 2;
+inline constexpr std::uint8_t moved_mark = 4;
+inline constexpr std::uint8_t changed_mark = 8;
+}  // namespace detail
+
+namespace detail {
+/// smb::overlaps without an early exit: the passes over the candidates meet pairs apart along
+/// any axis, in no order a branch predictor learns. The boxes hold no NaN (checked_box), so
+/// `<=` says what `!(>)` says.
+[[nodiscard]] inline bool overlaps_branchless(const Box<float, 3>& a, const Box<float, 3>& b) noexcept {
+    return static_cast<bool>(static_cast<int>(a.min[0] <= b.max[0]) & static_cast<int>(b.min[0] <= a.max[0]) &
+                             static_cast<int>(a.min[1] <= b.max[1]) & static_cast<int>(b.min[1] <= a.max[1]) &
+                             static_cast<int>(a.min[2] <= b.max[2]) & static_cast<int>(b.min[2] <= a.max[2]));
+}
 }  // namespace detail
 
 // Here, inline: setAabb asks it for every proxy at every step.
@@ -53,9 +70,24 @@ inline Broadphase::Proxy* Broadphase::live(BoxId id) const noexcept {
     return proxy != nullptr && proxy->alive ? proxy : nullptr;
 }
 
+// Here, inline: setAabb calls it for every box that changed.
+inline void Broadphase::mark_changed(std::uint32_t id) {
+    if ((marks_[id] & detail::changed_mark) != 0) return;
+    marks_[id] |= detail::changed_mark;
+    changed_ids_.push_back(id);
+}
+
 // Here, inline: the passes over the candidates call it for every one.
 inline void Broadphase::test_candidate(Candidate& candidate, btDispatcher* dispatcher) {
-    const bool overlap = overlaps(boxes_[candidate.a], boxes_[candidate.b]);
+    // Every calculateOverlappingPairs leaves each candidate's standing as its boxes are: while
+    // neither box changes, it stands (in a pile partly asleep, most candidates).
+    if (!test_all_ && ((marks_[candidate.a] | marks_[candidate.b]) & detail::changed_mark) == 0) return;
+    test_new_candidate(candidate, dispatcher);
+}
+
+// Here, inline: the passes over the candidates call it for every one they find anew.
+inline void Broadphase::test_new_candidate(Candidate& candidate, btDispatcher* dispatcher) {
+    const bool overlap = detail::overlaps_branchless(boxes_[candidate.a], boxes_[candidate.b]);
     // Most candidates stay as they were: apart and still apart, or held (or refused) and still
     // overlapping. A filter callback is asked at every step.
     if (!callback_mode_ && overlap == (candidate.held != Held::apart)) return;
@@ -63,11 +95,6 @@ inline void Broadphase::test_candidate(Candidate& candidate, btDispatcher* dispa
 }
 
 namespace detail {
-
-/// marks_: the id is listed in fresh_, in stale_, in moved_.
-inline constexpr std::uint8_t fresh_mark = 1;
-inline constexpr std::uint8_t stale_mark = 2;
-inline constexpr std::uint8_t moved_mark = 4;
 
 /// (a, b) order of candidates, the order of the pairs of smb's events.
 [[nodiscard]] inline bool comes_before(std::uint32_t a0, std::uint32_t b0, std::uint32_t a1,

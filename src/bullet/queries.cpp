@@ -129,6 +129,7 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     stale_ = {};
     stale_boxes_ = {};
     marks_ = {};
+    changed_ids_ = {};
     incremental_ = false;
     slots_.clear();
     slots_.shrink_to_fit();

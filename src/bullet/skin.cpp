@@ -98,11 +98,15 @@ void Broadphase::merge_candidates(btDispatcher* dispatcher) {
         merged_.push_back(candidate);
         test_candidate(merged_.back(), dispatcher);
     };
+    const auto add = [this, dispatcher](const Candidate& candidate) {
+        merged_.push_back(candidate);
+        test_new_candidate(merged_.back(), dispatcher);
+    };
     std::size_t next_ended = 0;
     std::size_t next_begun = 0;
     for (const Candidate& candidate : candidates_) {
         const Pair pair{candidate.a, candidate.b};
-        while (next_begun < begun.size() && begun[next_begun] < pair) keep(candidate_of(begun[next_begun++]));
+        while (next_begun < begun.size() && begun[next_begun] < pair) add(candidate_of(begun[next_begun++]));
         if (next_ended < ended.size() && ended[next_ended] == pair) {
             ++next_ended;
             if (candidate.held != Held::held) continue;
@@ -114,7 +118,7 @@ void Broadphase::merge_candidates(btDispatcher* dispatcher) {
         }
         keep(candidate);
     }
-    while (next_begun < begun.size()) keep(candidate_of(begun[next_begun++]));
+    while (next_begun < begun.size()) add(candidate_of(begun[next_begun++]));
     candidates_.swap(merged_);
 }
 

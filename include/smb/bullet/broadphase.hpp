@@ -129,8 +129,13 @@ private:
     /// Brings the cache to the candidates whose boxes overlap now (test_candidate on each).
     void test_candidates(btDispatcher* dispatcher);
     /// Adds the candidate's pair to the cache if its boxes began to overlap, removes it if they
-    /// stopped; the passes that rewrite the list call it for every candidate they write.
+    /// stopped; the passes that rewrite the list call it for every candidate they keep. It skips
+    /// a candidate neither of whose boxes changed since the last calculateOverlappingPairs.
     void test_candidate(Candidate& candidate, btDispatcher* dispatcher);
+    /// As test_candidate, without the skip: for a candidate new to the list.
+    void test_new_candidate(Candidate& candidate, btDispatcher* dispatcher);
+    /// Marks the proxy's box changed since the last calculateOverlappingPairs.
+    void mark_changed(std::uint32_t id);
     void settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher);
     /// After a detection that followed incremental steps (the events then describe another
     /// list): makes the candidates exactly pairs_, in order, keeping what the cache holds.
@@ -175,6 +180,9 @@ private:
     std::vector<std::uint32_t> stale_;
     std::vector<Box<float, 3>> stale_boxes_;
     std::vector<std::uint8_t> marks_;
+    /// Ids whose box changed (or that were created or destroyed) since the last
+    /// calculateOverlappingPairs: only the candidates they are part of are tested.
+    std::vector<std::uint32_t> changed_ids_;
     /// The candidates changed without a detection since the last one.
     bool incremental_ = false;
     std::unique_ptr<btOverlappingPairCache> owned_cache_;
@@ -199,9 +207,11 @@ private:
     /// A proxy or a filter changed since the last detection: the next one detects again (fat
     /// boxes alone are followed through fresh_).
     bool changed_ = true;
-    /// A proxy's box changed since the candidates were last tested.
-    bool boxes_changed_ = true;
     bool callback_mode_ = false;
+    /// Every candidate is tested in this calculateOverlappingPairs, changed or not: at every one
+    /// while the cache has a filter callback (it may change its mind), and at the first one
+    /// after it is taken away (the callback left overlapping pairs out of the cache).
+    bool test_all_ = false;
 };
 
 }  // namespace smb::bullet
