@@ -33,10 +33,14 @@ struct DiffScratch {
     std::vector<Pair> candidates;
     std::vector<Pair> ended;
     std::vector<RenamedPair> renamed;
+    /// A unit's pairs where they do not lie back to back (PairPartitions::unit()).
+    std::vector<PackedPair> previous_unit;
+    std::vector<PackedPair> current_unit;
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return table.capacity() * sizeof(std::uint32_t) + matched.capacity() +
-               (candidates.capacity() + ended.capacity()) * sizeof(Pair) + renamed.capacity() * sizeof(RenamedPair);
+               (candidates.capacity() + ended.capacity()) * sizeof(Pair) + renamed.capacity() * sizeof(RenamedPair) +
+               (previous_unit.capacity() + current_unit.capacity()) * sizeof(PackedPair);
     }
 };
 
