@@ -202,7 +202,19 @@ private:
         for (std::size_t p = 0; p < parts; ++p) begins[p] = ends[p] = static_cast<std::uint32_t>(p * room);
         PackedPair* out = packed.data();
         std::uint32_t* end = ends.data();
+        const auto part = [new_bits](PackedPair word) {
+            return static_cast<std::size_t>((word >> (63 - new_bits)) >> 1);
+        };
+        // The pass waits on memory: for the source it reads and for the line of the partition
+        // it writes to. Fetching both ahead (the partition of the pair 16 ahead) took the update
+        // from 28.2-28.7 to 27.8-28.0 ms at 1M boxes.
+        constexpr std::size_t kAhead = 16;
         for (std::size_t i = 0; i < n; ++i) {
+            if (i + 2 * kAhead < n) __builtin_prefetch(&source[i + 2 * kAhead]);
+            if (i + kAhead < n) {
+                const Pair& ahead = source[i + kAhead];
+                __builtin_prefetch(out + end[part(pack_pair(ahead.a, ahead.b & 0xFFFFFFFFU))], 1);
+            }
             const Pair& pair = source[i];
             if (pair.a >= pair.b || pair.b > 0xFFFFFFFFU) [[unlikely]] {
                 if (pair.a >= pair.b) throw_unordered(source, i);
@@ -210,7 +222,7 @@ private:
                 return false;
             }
             const PackedPair word = pack_pair(pair.a, pair.b);  // its own hash
-            const std::size_t p = partition_of_word(word);
+            const std::size_t p = part(word);
             if (end[p] < (p + 1) * room) [[likely]] {
                 out[end[p]++] = word;
             } else {
