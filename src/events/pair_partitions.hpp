@@ -70,8 +70,8 @@ template <class X, class Y>
     return ((pair.a * 0x9E3779B97F4A7C15ULL) ^ pair.b) * kMix;
 }
 
-/// About this many pairs per partition: their table (two slots a pair, 4 bytes a slot) and the
-/// pairs themselves fit in a core's L1 and L2 caches.
+/// About this many pairs per partition: their table (32 slots a pair, 4 bytes a slot) and the
+/// pairs themselves fit in a core's L2 cache.
 inline constexpr std::size_t kPairsPerPartition = 1024;
 inline constexpr int kMaxPartitionBits = 24;
 

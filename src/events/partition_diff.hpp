@@ -63,10 +63,12 @@ void diff_partition(std::span<const PreviousPair> previous, std::span<const Curr
         for (const CurrentPair& pair : current) scratch.candidates.push_back(unpacked(pair));
         return;
     }
-    // Eight slots a pair: most probes end at their first slot. Measured at 1M boxes (3D, update
-    // factor 1e-3), the diff took 24 ms with two slots a pair, 15 with four and 13 with eight.
+    // 32 slots a pair (128 KiB for a partition of a thousand, in L2; never cleared): nearly every
+    // probe ends at its first slot. Measured at 1M boxes (3D, update factor 1e-3, 2-core Xeon
+    // VM), the whole update took 29.6-30.4 ms with four slots a pair, 27.3-28.3 with eight,
+    // 26.5-27.5 with 16, 26.2-26.5 with 32 and 27.5-28.7 with 64.
     int table_bits = 3;
-    while ((std::size_t{1} << table_bits) < 8 * previous.size()) ++table_bits;
+    while ((std::size_t{1} << table_bits) < 32 * previous.size()) ++table_bits;
     const std::size_t mask = (std::size_t{1} << table_bits) - 1;
     // The partition took the top unit_bits bits of the hash; the table takes the next ones.
     const auto slot_of = [&](const auto& pair) {
