@@ -149,5 +149,25 @@ TEST(PairEventsLayout, WideNameOrBadPairLateInTheList) {
     expect_events(events, previous, bad, 1);
 }
 
+TEST(PairEventsLayout, OnePassAndCountedLayoutsCompared) {
+    // On two threads a list of fewer than 2^17 pairs is laid out in one pass, a longer one by
+    // counting; the layouts of two updates may differ either way, crowded or not.
+    std::mt19937_64 random(67);
+    PairEvents events(2);
+    std::vector<Pair> previous;
+    const std::size_t counts[] = {100000, 150000, 90000, 40000, 140000};
+    const std::size_t crowded[] = {20000, 0, 0, 9000, 30000};
+    for (int round = 0; round < 5; ++round) {
+        std::vector<Pair> next = crowded_pairs(random, counts[round], crowded[round], 200000);
+        for (std::size_t i = 0; i < previous.size() && i < next.size(); i += 2) next[i] = previous[i];
+        std::sort(next.begin(), next.end());
+        next.erase(std::unique(next.begin(), next.end()), next.end());
+        std::shuffle(next.begin(), next.end(), random);
+        events.update(next);
+        expect_events(events, previous, next, round);
+        previous = next;
+    }
+}
+
 }  // namespace
 }  // namespace smb::test
