@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -37,13 +38,10 @@ public:
         scratch_.candidates.clear();
         scratch_.ended.clear();
         scratch_.renamed.clear();
-        if (everything_replaced_) {
-            // Every previous pair ends, every pair begins, even one with the same two names.
-            if (previous_.is_packed) {
-                for (const PackedPair pair : previous_.packed) scratch_.ended.push_back(unpacked(pair));
-            } else {
-                scratch_.ended.assign(previous_.wide.begin(), previous_.wide.end());
-            }
+        if (everything_replaced_ || previous_.size() == 0) {
+            // Nothing to compare: every previous pair ends, every pair begins, even one with the
+            // same two names.
+            previous_.for_each([&](const auto& pair) { scratch_.ended.push_back(unpacked(pair)); });
             scratch_.candidates.assign(pairs.begin(), pairs.end());
         } else {
             std::optional<BodyFates> fates;
@@ -94,21 +92,17 @@ private:
         std::vector<std::ptrdiff_t> failed_unit(static_cast<std::size_t>(team), units);
         std::vector<std::exception_ptr> failure(static_cast<std::size_t>(team));
         const auto run = [&](const auto& previous_pairs, const auto& next_pairs) {
-            const std::span previous(previous_pairs);
-            const std::span next(next_pairs);
-            const std::size_t previous_per_unit = std::size_t{1} << (previous_.bits - unit_bits);
-            const std::size_t next_per_unit = std::size_t{1} << (next_.bits - unit_bits);
+            using PreviousPair = typename std::remove_cvref_t<decltype(previous_pairs)>::value_type;
+            using NextPair = typename std::remove_cvref_t<decltype(next_pairs)>::value_type;
 #pragma omp parallel for num_threads(team) schedule(dynamic, 16) if (team > 1)
             for (std::ptrdiff_t unit = 0; unit < units; ++unit) {
                 const auto u = static_cast<std::size_t>(unit);
                 const auto t = static_cast<std::size_t>(this_thread());
                 if (failed_unit[t] < unit) continue;
-                const std::size_t p0 = previous_.offsets[u * previous_per_unit];
-                const std::size_t p1 = previous_.offsets[(u + 1) * previous_per_unit];
-                const std::size_t n0 = next_.offsets[u * next_per_unit];
-                const std::size_t n1 = next_.offsets[(u + 1) * next_per_unit];
+                DiffScratch& scratch = own_[t];
                 try {
-                    diff_partition(previous.subspan(p0, p1 - p0), next.subspan(n0, n1 - n0), unit_bits, fates, own_[t]);
+                    diff_partition(previous_.unit<PreviousPair>(u, unit_bits, scratch.previous_unit),
+                                   next_.unit<NextPair>(u, unit_bits, scratch.current_unit), unit_bits, fates, scratch);
                 } catch (...) {
                     failed_unit[t] = unit;
                     failure[t] = std::current_exception();
@@ -128,6 +122,13 @@ private:
         }
         const auto first = std::min_element(failed_unit.begin(), failed_unit.end());
         if (*first != units) std::rethrow_exception(failure[static_cast<std::size_t>(first - failed_unit.begin())]);
+        // A unit gathered whole (one list of few partitions against one of many) is rare; its
+        // room is not kept.
+        constexpr std::size_t kKeptUnit = std::size_t{1} << 16;
+        for (DiffScratch& scratch : own_) {
+            if (scratch.previous_unit.capacity() > kKeptUnit) std::vector<PackedPair>().swap(scratch.previous_unit);
+            if (scratch.current_unit.capacity() > kKeptUnit) std::vector<PackedPair>().swap(scratch.current_unit);
+        }
         // One thread's scratch becomes the whole; the others are appended to it.
         std::swap(scratch_.candidates, own_[0].candidates);
         std::swap(scratch_.ended, own_[0].ended);

@@ -39,7 +39,7 @@ class PairEventsState;
 ///
 /// Cost: linear in the pairs of the two lists (they are hashed into partitions small enough for
 /// the cache and compared partition by partition), plus sorting the events (docs/events.md). It
-/// holds about 60 bytes per pair: the previous list, hashed, room for the next, and the events.
+/// holds about 65 bytes per pair: the previous list, hashed, room for the next, and the events.
 ///
 /// Threads: an update uses the threads given at construction, whatever the detection uses.
 ///
