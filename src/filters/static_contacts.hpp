@@ -39,12 +39,9 @@ public:
 
     /// Moving boxes that asked the grid again in the last detection.
     [[nodiscard]] std::size_t refreshed() const noexcept { return refreshed_; }
-    /// Static copies the moving boxes hold.
-    [[nodiscard]] std::size_t cached() const noexcept {
-        std::size_t n = 0;
-        for (const Entry& e : entries_) n += e.count;
-        return n;
-    }
+    /// Static copies the moving boxes held in the last detection, counted there (a pass of its
+    /// own over the entries read them from memory once more, 6% of this part's time).
+    [[nodiscard]] std::size_t cached() const noexcept { return cached_; }
 
     void clear() { *this = StaticContacts(); }
 
@@ -81,6 +78,7 @@ public:
     void detect(std::span<const box_type> boxes, std::span<const IdFilter> info, const StaticGrid<Real, Dim>& grid,
                 const PairPredicate* predicate, PairOutput& output) {
         refreshed_ = 0;
+        cached_ = 0;
         if (grid.empty()) return;
         if (dead_ > 4096 && 2 * dead_ > copies_.size()) close_up();
         const double skin_floor = 0.125 * grid.smallest_cell_side();
@@ -90,6 +88,7 @@ public:
             Entry& e = entries_[i];
             if (!e.valid || !inside(box, e.fat)) refresh(e, box, info[i].filter, grid, skin_floor);
             if (hits_.size() < e.count) hits_.resize(e.count);
+            cached_ += e.count;
             // The hits first, without a branch per static (a quarter of them hit: a branch
             // would be mispredicted often); then their report, in order.
             const Lattice<Dim> lattice(e.fat, e.scale);
@@ -193,9 +192,11 @@ private:
     static constexpr std::size_t kAhead = 4;
 
     void prefetch_range(const Entry& e) const noexcept {
-        const char* from = reinterpret_cast<const char*>(copies_.data() + e.offset);
-        const char* to = reinterpret_cast<const char*>(copies_.data() + e.offset + e.count);
-        for (const char* p = from; p < to; p += 64) __builtin_prefetch(p);
+        // From the line the first copy starts in, so that the range's last line is asked for too.
+        const auto to = reinterpret_cast<std::uintptr_t>(copies_.data() + e.offset + e.count);
+        for (auto p = reinterpret_cast<std::uintptr_t>(copies_.data() + e.offset) & ~std::uintptr_t{63}; p < to;
+             p += 64)
+            __builtin_prefetch(reinterpret_cast<const void*>(p));
     }
 
     /// Copies the live ranges into a fresh pool in the boxes' order.
@@ -225,6 +226,7 @@ private:
     std::vector<std::uint32_t> hits_;   // one box's hits, as positions in its range
     std::size_t dead_ = 0;              // pool entries no box points to
     std::size_t refreshed_ = 0;
+    std::size_t cached_ = 0;
     bool tracking_ = false;
 };
 
