@@ -58,7 +58,7 @@ public:
             scratch_.candidates.assign(pairs.begin(), pairs.end());
         } else {
             diff_partitions(followed, threads);
-            }
+        }
         settle_candidates(followed);
         sort_pairs_fast(scratch_.ended, sort_scratch_);
 
