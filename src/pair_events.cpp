@@ -34,22 +34,32 @@ public:
         DetectionSettings team;
         team.threads = threads_;
         const int threads = thread_count(team);
-        next_.assign(pairs, threads);  // checks a < b
+        const bool compare = !everything_replaced_ && previous_.size() != 0;
+        std::optional<BodyFates> fates;
+        if (compare && (!calls_.empty() || !replaced.empty())) fates.emplace(calls_, replaced);
+        const BodyFates* followed = fates && !fates->empty() ? &*fates : nullptr;
+        watched_.resize(static_cast<std::size_t>(threads));
+        for (auto& watched : watched_) watched.clear();
+        if (followed != nullptr) {
+            // The pairs that name a body with a fate, gathered while the layout has them at hand.
+            next_.assign(pairs, threads, [&](const Pair& pair, int thread) {
+                if (followed->may_touch(pair)) watched_[static_cast<std::size_t>(thread)].push_back(pair);
+            });
+        } else {
+            next_.assign(pairs, threads);  // checks a < b
+        }
         scratch_.candidates.clear();
         scratch_.ended.clear();
         scratch_.renamed.clear();
-        if (everything_replaced_ || previous_.size() == 0) {
+        if (!compare) {
             // Nothing to compare: every previous pair ends, every pair begins, even one with the
             // same two names.
             previous_.for_each([&](const auto& pair) { scratch_.ended.push_back(unpacked(pair)); });
             scratch_.candidates.assign(pairs.begin(), pairs.end());
         } else {
-            std::optional<BodyFates> fates;
-            if (!calls_.empty() || !replaced.empty()) fates.emplace(calls_, replaced);
-            const BodyFates* followed = fates && !fates->empty() ? &*fates : nullptr;
             diff_partitions(followed, threads);
         }
-        settle_candidates();
+        settle_candidates(followed);
         sort_pairs_fast(scratch_.ended, sort_scratch_);
 
         // Nothing below throws.
@@ -70,11 +80,17 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return sizeof(*this) + previous_.bytes_held() + next_.bytes_held() + scratch_.bytes_held() +
                (begun_.capacity() + ended_.capacity()) * sizeof(Pair) + sort_scratch_.bytes_held() +
-               calls_.capacity() * sizeof(BodyCall) +
+               calls_.capacity() * sizeof(BodyCall) + watched_bytes() +
                own_.bytes_held([](const DiffScratch& scratch) { return scratch.bytes_held(); });
     }
 
 private:
+    [[nodiscard]] std::size_t watched_bytes() const noexcept {
+        std::size_t bytes = watched_.capacity() * sizeof(std::vector<Pair>);
+        for (const auto& watched : watched_) bytes += watched.capacity() * sizeof(Pair);
+        return bytes;
+    }
+
     /// Each partition of the coarser of the two lists' layouts against the same hash range of
     /// the other: a range of whole partitions, contiguous in the layout. On several threads,
     /// each with its own scratch, merged after; the order of the events does not matter before
@@ -148,11 +164,12 @@ private:
     /// The candidates that are not renamed previous pairs begin; the renamed pairs not found
     /// among them ended, under their previous names. Sorting the candidates also finds a new pair
     /// listed twice: the two copies end up side by side.
-    void settle_candidates() {
+    void settle_candidates(const BodyFates* fates) {
         auto& candidates = scratch_.candidates;
         sort_pairs_fast(candidates, sort_scratch_);
         const auto repeat = std::adjacent_find(candidates.begin(), candidates.end());
         if (repeat != candidates.end()) throw_repeated_pair(*repeat);
+        if (fates != nullptr) settle_watched(*fates);
         auto& renamed = scratch_.renamed;
         if (renamed.empty()) return;
         std::sort(renamed.begin(), renamed.end(),
@@ -171,8 +188,41 @@ private:
         candidates.resize(kept);
     }
 
+    /// A watched pair (one that names a body with a fate) not among the candidates met the
+    /// previous pair of the same names in the comparison, which took them for one; the bodies
+    /// under those names may differ. Where they do, the previous pair is followed to its
+    /// bodies' names now and settled with the renamed ones, and the watched pair is a candidate.
+    void settle_watched(const BodyFates& fates) {
+        auto& watched = watched_[0];
+        for (std::size_t t = 1; t < watched_.size(); ++t) append(watched, watched_[t]);
+        sort_pairs_fast(watched, sort_scratch_);
+        watched.erase(std::unique(watched.begin(), watched.end()), watched.end());  // a layout begun again
+        auto& candidates = scratch_.candidates;
+        const std::size_t candidate_count = candidates.size();
+        auto from = candidates.begin();
+        std::vector<Pair> met;
+        for (const Pair& pair : watched) {
+            from = std::lower_bound(from, candidates.begin() + static_cast<std::ptrdiff_t>(candidate_count), pair);
+            if (from != candidates.end() && *from == pair) continue;  // not met: a candidate already
+            Pair now = pair;
+            const auto outcome = fates.follow(pair, now);
+            if (outcome == BodyFates::Outcome::same) continue;  // the same bodies: it goes on
+            if (outcome == BodyFates::Outcome::ended) {
+                scratch_.ended.push_back(pair);
+            } else {
+                scratch_.renamed.push_back({now, pair});
+            }
+            met.push_back(pair);
+        }
+        if (met.empty()) return;
+        const std::ptrdiff_t middle = static_cast<std::ptrdiff_t>(candidates.size());
+        candidates.insert(candidates.end(), met.begin(), met.end());
+        std::inplace_merge(candidates.begin(), candidates.begin() + middle, candidates.end());
+    }
+
     unsigned threads_ = 1;
-    PerThread<DiffScratch> own_;  // each thread's tables and findings in diff_partitions()
+    std::vector<std::vector<Pair>> watched_;  // each layout thread's watched pairs
+    PerThread<DiffScratch> own_;              // each thread's tables and findings in diff_partitions()
     PairPartitions previous_;
     PairPartitions next_;
     DiffScratch scratch_;

@@ -43,8 +43,10 @@ public:
 
     [[nodiscard]] bool empty() const noexcept { return fate_.empty(); }
 
-    /// Whether `pair` may involve a body with a fate: a filter of one bit per name, so that the
-    /// pairs of bodies left alone (nearly all) cost a load or two each.
+    /// Whether `pair` may name a body with a fate, by its previous names or by its names now (a
+    /// name whose body is not the one named so before): a filter of one bit per name, so that
+    /// the pairs of bodies left alone (nearly all) cost a load or two each. Exact where the
+    /// names are below 2^27; a hashed filter lets through more.
     [[nodiscard]] bool may_touch(const Pair& pair) const noexcept { return marked(pair.a) || marked(pair.b); }
 
     /// What became of the previous pair `pair`; `renamed` gives its new name in `now`.
@@ -85,20 +87,21 @@ private:
     }
     void set_fate(BoxId body, std::optional<BoxId> now) { fate_[body] = now; }
 
-    /// Exact, one bit per name up to the largest name with a fate, where that is at most 2^27
-    /// (16 MiB; indices and dense ids); else one bit per hashed name. A hashed filter lets
-    /// through a share of all pairs as large as its share of bits set, each costing two map
-    /// lookups: with the swap-removes of one step at 1M boxes (some 2 000 bodies in 2^16 bits),
-    /// that was a quarter of the events' time.
+    /// Exact, one bit per name up to the largest name marked, where that is below 2^27 (16 MiB;
+    /// indices and dense ids); else one bit per hashed name. A hashed filter lets through a
+    /// share of the pairs as large as its share of bits set, each costing two map lookups.
     void build_filter() {
         BoxId largest = 0;
         for (const auto& entry : fate_) largest = std::max(largest, entry.first);
+        for (const auto& entry : holder_) largest = std::max(largest, entry.first);
         exact_ = largest < (BoxId{1} << 27);
         filter_.assign(exact_ ? static_cast<std::size_t>(largest / 64 + 1) : (std::size_t{1} << kFilterBits) / 64, 0);
-        for (const auto& entry : fate_) {
-            const std::size_t bit = filter_bit(entry.first);
+        const auto mark = [&](BoxId name) {
+            const std::size_t bit = filter_bit(name);
             filter_[bit / 64] |= std::uint64_t{1} << (bit % 64);
-        }
+        };
+        for (const auto& entry : fate_) mark(entry.first);
+        for (const auto& entry : holder_) mark(entry.first);
     }
     [[nodiscard]] bool marked(BoxId name) const noexcept {
         if (exact_ && name >= filter_.size() * 64) return false;

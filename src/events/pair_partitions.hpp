@@ -147,14 +147,20 @@ struct PairPartitions {
 
     /// Lays out `source` by partition, on `threads` threads (the layout depends on the thread
     /// count, the events do not). Throws ArgumentError for the first pair without a < b, with
-    /// this object left empty.
-    void assign(std::span<const Pair> source, int threads) {
+    /// this object left empty. `watch(pair, thread)` sees every pair while it is at hand, at
+    /// least once (a one-pass layout that meets a wide name starts again), on the thread
+    /// numbered `thread` of those laying out.
+    template <class Watch>
+    void assign(std::span<const Pair> source, int threads, const Watch& watch) {
         if (source.size() >= UINT32_MAX)
             throw ArgumentError("PairEvents::update: at most " + std::to_string(UINT32_MAX - 1) + " pairs");
         const int new_bits = partition_bits_for(source.size());
         constexpr std::size_t kPairsPerThread = std::size_t{1} << 16;
-        if ((threads <= 1 || source.size() < 2 * kPairsPerThread) && assign_gapped(source, new_bits)) return;
-        assign_counted(source, threads, new_bits);
+        if ((threads <= 1 || source.size() < 2 * kPairsPerThread) && assign_gapped(source, new_bits, watch)) return;
+        assign_counted(source, threads, new_bits, watch);
+    }
+    void assign(std::span<const Pair> source, int threads) {
+        assign(source, threads, [](const Pair&, int) {});
     }
 
 private:
@@ -184,7 +190,8 @@ private:
     /// deviations more (the hash spreads the pairs as a Poisson process would), and a pair that
     /// finds its partition full goes to `spill`. Packed lists only: returns false, having laid
     /// out nothing, on meeting a name of more than 32 bits.
-    bool assign_gapped(std::span<const Pair> source, int new_bits) {
+    template <class Watch>
+    bool assign_gapped(std::span<const Pair> source, int new_bits, const Watch& watch) {
         const std::size_t parts = std::size_t{1} << new_bits;
         const std::size_t n = source.size();
         const std::size_t mean = (n >> new_bits) + 1;
@@ -221,6 +228,7 @@ private:
                 make_empty();
                 return false;
             }
+            watch(pair, 0);
             const PackedPair word = pack_pair(pair.a, pair.b);  // its own hash
             const std::size_t p = part(word);
             if (end[p] < (p + 1) * room) [[likely]] {
@@ -235,7 +243,8 @@ private:
 
     /// Counts, then scatters: partitions back to back, each thread its own contiguous share of
     /// `source`.
-    void assign_counted(std::span<const Pair> source, int threads, int new_bits) {
+    template <class Watch>
+    void assign_counted(std::span<const Pair> source, int threads, int new_bits, const Watch& watch) {
         // A shift by 64 is undefined: one partition is the hash shifted by 63, then halved.
         const auto partition_of = [new_bits](const Pair& pair) {
             return static_cast<std::size_t>((pair_hash(pair) >> (63 - new_bits)) >> 1);
@@ -264,6 +273,7 @@ private:
                     break;
                 }
                 seen |= pair.b;
+                watch(pair, t);
                 ++count[partition_of(pair)];
             }
             names[static_cast<std::size_t>(t)] = seen;

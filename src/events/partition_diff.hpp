@@ -90,23 +90,6 @@ void diff_partition(std::span<const PreviousPair> previous, std::span<const Curr
     constexpr std::size_t kAhead = 32;
     for (std::size_t i = 0; i < previous.size(); ++i) {
         if (i + kAhead < previous.size()) __builtin_prefetch(&previous[i + kAhead]);
-        if (fates != nullptr) {
-            const Pair pair = unpacked(previous[i]);
-            if (fates->may_touch(pair)) {
-                Pair now;
-                const auto outcome = fates->follow(pair, now);
-                if (outcome == BodyFates::Outcome::ended) {
-                    scratch.ended.push_back(pair);
-                    matched[i] = 1;
-                    continue;
-                }
-                if (outcome == BodyFates::Outcome::renamed) {
-                    scratch.renamed.push_back({now, pair});
-                    matched[i] = 1;
-                    continue;
-                }
-            }
-        }
         std::size_t slot = slot_of(previous[i]);
         while (table[slot] > base) slot = (slot + 1) & mask;
         table[slot] = base + static_cast<std::uint32_t>(i + 1);
@@ -132,8 +115,18 @@ void diff_partition(std::span<const PreviousPair> previous, std::span<const Curr
         }
     }
 
+    // A previous pair of a body with a fate is matched here only by a pair of the same names
+    // that pair_events.cpp finds again among the watched ones; one not matched has no pair of
+    // its names now: it ended, or goes on renamed.
     for (std::size_t i = 0; i < previous.size(); ++i) {
-        if (matched[i] == 0) scratch.ended.push_back(unpacked(previous[i]));
+        if (matched[i] != 0) continue;
+        const Pair pair = unpacked(previous[i]);
+        Pair now;
+        if (fates != nullptr && fates->may_touch(pair) && fates->follow(pair, now) == BodyFates::Outcome::renamed) {
+            scratch.renamed.push_back({now, pair});
+        } else {
+            scratch.ended.push_back(pair);
+        }
     }
 }
 
