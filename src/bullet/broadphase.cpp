@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The proxies' life and the pair cache: smb's pair events become the cache's additions and
+// The proxies' life and the pair cache: the pairs that begin and stop overlapping become the cache's additions and
 // removals, so that a pair (and its contact manifold) lives exactly while its boxes overlap.
 
 #include "smb/bullet/broadphase.hpp"
@@ -235,29 +235,27 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
     bool tested = false;
     if (changed_ || fresh_.size() > fresh_limit) {
         pairs_.clear();
-        world_.detect(pairs_, events_);
+        // The pairs of the detection are merged with the candidates directly: sorted by a radix
+        // sort, they cost less than comparing the two lists through hashed partitions. Exact because
+        // an id is given out again only after a detection (retired_ids_): a pair of two ids
+        // stands for the same two proxies in both lists.
+        world_.detect(pairs_);
         const std::size_t retired_before = retired_ids_.size();
         changed_ = false;
         tested = true;
-        if (incremental_) {
-            reconcile_candidates(dispatcher);
-        } else {
-            merge_candidates(dispatcher);
-        }
-        incremental_ = false;
+        reconcile_candidates(dispatcher);
         index_current_ = false;
         constexpr auto listed = static_cast<std::uint8_t>(~(detail::fresh_mark | detail::stale_mark));
         for (const std::uint32_t id : fresh_) marks_[id] &= listed;
         for (const std::uint32_t id : stale_) marks_[id] &= listed;
         fresh_.clear();
         stale_.clear();
-        // The events named the ids destroyed before the detection for the last time.
+        // The detection named the ids destroyed before it for the last time.
         free_ids_.insert(free_ids_.end(), retired_ids_.begin(),
                          retired_ids_.begin() + static_cast<std::ptrdiff_t>(retired_before));
         retired_ids_.erase(retired_ids_.begin(), retired_ids_.begin() + static_cast<std::ptrdiff_t>(retired_before));
     } else if (!fresh_.empty()) {
         update_fresh_candidates(dispatcher);
-        incremental_ = true;
         tested = true;
     }
     if (!tested && (!changed_ids_.empty() || test_all_)) test_candidates(dispatcher);

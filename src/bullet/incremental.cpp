@@ -9,8 +9,10 @@
 // index, the others (the stale ones) one by one.
 
 #include <algorithm>
+#include <utility>
 
 #include "bullet/proxy.hpp"
+#include "events/pair_radix_sort.hpp"
 #include "smb/bullet/broadphase.hpp"
 #include "smb/filter.hpp"
 
@@ -115,7 +117,10 @@ void Broadphase::update_fresh_candidates(btDispatcher* dispatcher) {
 }
 
 void Broadphase::reconcile_candidates(btDispatcher* dispatcher) {
-    std::sort(pairs_.begin(), pairs_.end());
+    smb::detail::PairSortScratch scratch{std::move(sort_keys_), std::move(sort_spare_)};
+    smb::detail::sort_pairs_fast(pairs_, scratch);
+    sort_keys_ = std::move(scratch.keys);
+    sort_spare_ = std::move(scratch.spare);
     if (!candidates_sorted_) std::sort(candidates_.begin(), candidates_.end(), comes_before<Candidate>);
     candidates_sorted_ = true;
     merged_.clear();

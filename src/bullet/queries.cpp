@@ -111,8 +111,9 @@ void Broadphase::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const
 void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     if (live_ != 0) return;
     world_.clear();
-    events_.clear();
     pairs_ = {};
+    sort_keys_ = {};
+    sort_spare_ = {};
     boxes_ = {};
     fat_boxes_ = {};
     candidates_ = {};
@@ -130,7 +131,6 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     stale_boxes_ = {};
     marks_ = {};
     changed_ids_ = {};
-    incremental_ = false;
     slots_.clear();
     slots_.shrink_to_fit();
     free_ids_ = {};
@@ -147,7 +147,7 @@ void Broadphase::printStats() {
                 live_, cache_->getNumOverlappingPairs(),
                 static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(),
                                                        [](const auto& slot) { return slot && slot->held_static; })),
-                world_.bytes_held() + events_.bytes_held());
+                world_.bytes_held() + pairs_.capacity() * sizeof(Pair) + candidates_.capacity() * sizeof(Candidate));
 }
 
 }  // namespace smb::bullet

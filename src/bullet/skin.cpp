@@ -7,8 +7,6 @@
 // Exact because every proxy's box lies inside its fat box: two boxes that overlap have fat boxes
 // that overlap, so their pair is a candidate, and every candidate is tested on the boxes.
 
-#include <span>
-
 #include "bullet/proxy.hpp"
 #include "smb/bullet/broadphase.hpp"
 
@@ -76,50 +74,6 @@ void Broadphase::drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher) {
     detail::erase_partner(b.partners, static_cast<std::uint32_t>(a.m_uniqueId));
     --pairs_held_;
     cache_->removeOverlappingPair(&a, &b, dispatcher);
-}
-
-void Broadphase::merge_candidates(btDispatcher* dispatcher) {
-    const std::span<const Pair> ended = events_.ended();
-    const std::span<const Pair> begun = events_.begun();
-    if (ended.empty() && begun.empty()) {
-        test_candidates(dispatcher);
-        return;
-    }
-    const auto candidate_of = [](const Pair& pair) {
-        return Candidate{static_cast<std::uint32_t>(pair.a), static_cast<std::uint32_t>(pair.b), Held::apart};
-    };
-    // Both lists of events are sorted as the candidates are, and the ended ones are candidates:
-    // one merge. An id given to a new proxy ends its old pairs and begins its new ones, the same
-    // pair possibly among both; the ended one is met first.
-    merged_.clear();
-    merged_.reserve(candidates_.size() - ended.size() + begun.size());
-    // Each candidate kept is tested on the boxes as it is written: one pass.
-    const auto keep = [this, dispatcher](const Candidate& candidate) {
-        merged_.push_back(candidate);
-        test_candidate(merged_.back(), dispatcher);
-    };
-    const auto add = [this, dispatcher](const Candidate& candidate) {
-        merged_.push_back(candidate);
-        test_new_candidate(merged_.back(), dispatcher);
-    };
-    std::size_t next_ended = 0;
-    std::size_t next_begun = 0;
-    for (const Candidate& candidate : candidates_) {
-        const Pair pair{candidate.a, candidate.b};
-        while (next_begun < begun.size() && begun[next_begun] < pair) add(candidate_of(begun[next_begun++]));
-        if (next_ended < ended.size() && ended[next_ended] == pair) {
-            ++next_ended;
-            if (candidate.held != Held::held) continue;
-            // A proxy destroyed took its pairs with it (remove_pairs_of).
-            Proxy* a = live(candidate.a);
-            Proxy* b = live(candidate.b);
-            if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
-            continue;
-        }
-        keep(candidate);
-    }
-    while (next_begun < begun.size()) add(candidate_of(begun[next_begun++]));
-    candidates_.swap(merged_);
 }
 
 void Broadphase::test_candidates(btDispatcher* dispatcher) {

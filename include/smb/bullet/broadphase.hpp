@@ -13,7 +13,6 @@
 #include "smb/box.hpp"
 #include "smb/box_index.hpp"
 #include "smb/pair.hpp"
-#include "smb/pair_events.hpp"
 #include "smb/settings.hpp"
 #include "smb/world.hpp"
 
@@ -123,9 +122,6 @@ private:
     /// Hands smb's World the fat boxes that the proxies' boxes left since the last call.
     void flush_moves();
     void sync_filters();
-    /// The candidates after a detection: those whose fat boxes stopped overlapping leave (and
-    /// the cache, if it held them), those that began join; every candidate is tested.
-    void merge_candidates(btDispatcher* dispatcher);
     /// Brings the cache to the candidates whose boxes overlap now (test_candidate on each).
     void test_candidates(btDispatcher* dispatcher);
     /// Adds the candidate's pair to the cache if its boxes began to overlap, removes it if they
@@ -137,8 +133,9 @@ private:
     /// Marks the proxy's box changed since the last calculateOverlappingPairs.
     void mark_changed(std::uint32_t id);
     void settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher);
-    /// After a detection that followed incremental steps (the events then describe another
-    /// list): makes the candidates exactly pairs_, in order, keeping what the cache holds.
+    /// After a detection: sorts pairs_ and makes the candidates exactly pairs_, in order: those
+    /// whose fat boxes stopped overlapping leave (and the cache, if it held them), those that
+    /// began join, those that stay keep what the cache holds; every candidate is tested.
     void reconcile_candidates(btDispatcher* dispatcher);
     /// Without a detection: the candidates of the fat boxes changed in this step (fresh_), found
     /// through index_ and among the stale boxes, replace those they had.
@@ -153,8 +150,11 @@ private:
     void set_callback_mode(bool callback_mode);
 
     World<float, 3> world_;
-    PairEvents events_;
+    /// The pairs of fat boxes of the last detection, sorted by (a, b) before the merge, and the
+    /// room its radix sort works in.
     std::vector<Pair> pairs_;
+    std::vector<std::uint64_t> sort_keys_;
+    std::vector<std::uint64_t> sort_spare_;
     float skin_ = default_skin;
     /// By id: each proxy's box (empty, pairing with nothing, once destroyed) and its fat box.
     std::vector<Box<float, 3>> boxes_;
@@ -183,8 +183,6 @@ private:
     /// Ids whose box changed (or that were created or destroyed) since the last
     /// calculateOverlappingPairs: only the candidates they are part of are tested.
     std::vector<std::uint32_t> changed_ids_;
-    /// The candidates changed without a detection since the last one.
-    bool incremental_ = false;
     std::unique_ptr<btOverlappingPairCache> owned_cache_;
     btOverlappingPairCache* cache_ = nullptr;
 
