@@ -12,21 +12,12 @@
 #include <set>
 #include <vector>
 
+#include "reference/pair_sets.hpp"
 #include "reference/world_types.hpp"
 #include "smb/pair_events.hpp"
 
 namespace smb::test {
 namespace {
-
-std::vector<Pair> as_vector(std::span<const Pair> pairs) { return {pairs.begin(), pairs.end()}; }
-
-std::vector<Pair> difference(std::vector<Pair> x, std::vector<Pair> y) {
-    std::sort(x.begin(), x.end());
-    std::sort(y.begin(), y.end());
-    std::vector<Pair> out;
-    std::set_difference(x.begin(), x.end(), y.begin(), y.end(), std::back_inserter(out));
-    return out;
-}
 
 /// `count` distinct pairs among `names` names, in random order.
 std::vector<Pair> random_pairs(std::mt19937_64& random, std::size_t count, BoxId names) {

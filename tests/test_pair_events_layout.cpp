@@ -15,20 +15,11 @@
 #include <vector>
 
 #include "events/pair_partitions.hpp"
+#include "reference/pair_sets.hpp"
 #include "smb/pair_events.hpp"
 
 namespace smb::test {
 namespace {
-
-std::vector<Pair> as_vector(std::span<const Pair> pairs) { return {pairs.begin(), pairs.end()}; }
-
-std::vector<Pair> difference(std::vector<Pair> x, std::vector<Pair> y) {
-    std::sort(x.begin(), x.end());
-    std::sort(y.begin(), y.end());
-    std::vector<Pair> out;
-    std::set_difference(x.begin(), x.end(), y.begin(), y.end(), std::back_inserter(out));
-    return out;
-}
 
 /// `count` distinct pairs of names below `names`, of which `crowded` hash into the first
 /// partition of a list of `count` pairs (the top partition bits all zero), in random order.
@@ -60,6 +51,24 @@ void expect_events(const PairEvents& events, const std::vector<Pair>& previous, 
     EXPECT_EQ(as_vector(events.begun()), difference(next, previous)) << round;
     EXPECT_EQ(as_vector(events.ended()), difference(previous, next)) << round;
     EXPECT_EQ(events.size(), next.size()) << round;
+}
+
+/// Updates `events` with a list per round (counts[r] pairs, crowded[r] of them in the first
+/// partition, names below `names`), half of each list kept from the one before, checking the
+/// events after every update.
+void expect_rounds(PairEvents& events, std::mt19937_64& random, std::span<const std::size_t> counts,
+                   std::span<const std::size_t> crowded, BoxId names) {
+    std::vector<Pair> previous;
+    for (std::size_t round = 0; round < counts.size(); ++round) {
+        std::vector<Pair> next = crowded_pairs(random, counts[round], crowded[round], names);
+        for (std::size_t i = 0; i < previous.size() && i < next.size(); i += 2) next[i] = previous[i];
+        std::sort(next.begin(), next.end());
+        next.erase(std::unique(next.begin(), next.end()), next.end());
+        std::shuffle(next.begin(), next.end(), random);
+        events.update(next);
+        expect_events(events, previous, next, static_cast<int>(round));
+        previous = next;
+    }
 }
 
 TEST(PairEventsLayout, CrowdedPartitionsSpill) {
@@ -102,19 +111,9 @@ TEST(PairEventsLayout, ListsOfVeryDifferentSizes) {
     // the finer layout is compared within its unit of the coarser one.
     std::mt19937_64 random(59);
     PairEvents events;
-    std::vector<Pair> previous;
     const std::size_t counts[] = {300, 40000, 900, 40000, 2500, 70000, 10};
     const std::size_t crowded[] = {0, 15000, 0, 0, 2000, 30000, 0};
-    for (int round = 0; round < 7; ++round) {
-        std::vector<Pair> next = crowded_pairs(random, counts[round], crowded[round], 60000);
-        for (std::size_t i = 0; i < previous.size() && i < next.size(); i += 2) next[i] = previous[i];
-        std::sort(next.begin(), next.end());
-        next.erase(std::unique(next.begin(), next.end()), next.end());
-        std::shuffle(next.begin(), next.end(), random);
-        events.update(next);
-        expect_events(events, previous, next, round);
-        previous = next;
-    }
+    expect_rounds(events, random, counts, crowded, 60000);
 }
 
 TEST(PairEventsLayout, WideNameOrBadPairLateInTheList) {
@@ -154,19 +153,9 @@ TEST(PairEventsLayout, OnePassAndCountedLayoutsCompared) {
     // counting; the layouts of two updates may differ either way, crowded or not.
     std::mt19937_64 random(67);
     PairEvents events(2);
-    std::vector<Pair> previous;
     const std::size_t counts[] = {100000, 150000, 90000, 40000, 140000};
     const std::size_t crowded[] = {20000, 0, 0, 9000, 30000};
-    for (int round = 0; round < 5; ++round) {
-        std::vector<Pair> next = crowded_pairs(random, counts[round], crowded[round], 200000);
-        for (std::size_t i = 0; i < previous.size() && i < next.size(); i += 2) next[i] = previous[i];
-        std::sort(next.begin(), next.end());
-        next.erase(std::unique(next.begin(), next.end()), next.end());
-        std::shuffle(next.begin(), next.end(), random);
-        events.update(next);
-        expect_events(events, previous, next, round);
-        previous = next;
-    }
+    expect_rounds(events, random, counts, crowded, 200000);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "events/body_fates.hpp"
+#include "reference/pair_sets.hpp"
 #include "smb/pair_events.hpp"
 
 namespace smb::test {
@@ -101,8 +102,6 @@ void fates_against_model(BoxId offset) {
         EXPECT_GT(let_through, 0U);
     }
 }
-
-std::vector<Pair> as_vector(std::span<const Pair> pairs) { return {pairs.begin(), pairs.end()}; }
 
 TEST(PairEventsRenaming, SameNamesOtherBodies) {
     for (const BoxId o : {BoxId{0}, BoxId{1} << 40}) {
