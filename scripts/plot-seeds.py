@@ -19,6 +19,7 @@ Usage: scripts/plot-seeds.py [--dir bench/results/xeon-16core/reproduction-4.1] 
 import argparse
 import csv
 import glob
+import importlib.util
 import os
 import re
 import sys
@@ -29,9 +30,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 import numpy as np  # noqa: E402
 
-REPO_ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-MB = 1e6
-PAPER_BYTES_PER_BOX = 250  # read off the paper's Fig. 8: about 250 MB at 1M boxes
+# The single-seed plot's constants and figure saving (the file name has a hyphen, so no plain
+# import).
+_SPEC = importlib.util.spec_from_file_location(
+    "plot_reproduction", os.path.join(os.path.dirname(os.path.abspath(__file__)), "plot-reproduction.py"))
+plot_reproduction = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(plot_reproduction)
+REPO_ROOT, MB = plot_reproduction.REPO_ROOT, plot_reproduction.MB
+PAPER_BYTES_PER_BOX = plot_reproduction.PAPER_BYTES_PER_BOX
+save = plot_reproduction.save
 MARKERS = "osD^v"
 PIPELINES = ("paper", "persistent")
 SHORT = {"paper": "paper pipeline", "persistent": "default pipeline"}
@@ -101,14 +108,6 @@ def panels(rows, title, xlabel, ylabels, width=12.0, height=4.6):
             panel.set_ylabel(ylabel)
             panel.grid(True, alpha=0.3)
     return figure, axes
-
-
-def save(figure, folder, name, written):
-    path = os.path.join(folder, name)
-    figure.tight_layout()
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    written.append(path)
 
 
 def write_summary(folder, name, lines, written):
