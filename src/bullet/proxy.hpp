@@ -96,7 +96,7 @@ inline void Broadphase::test_new_candidate(Candidate& candidate, btDispatcher* d
 
 namespace detail {
 
-/// (a, b) order of candidates, the order of the pairs of smb's events.
+/// (a, b) order of candidates, the order of the detection's pairs once sorted.
 [[nodiscard]] inline bool comes_before(std::uint32_t a0, std::uint32_t b0, std::uint32_t a1,
                                        std::uint32_t b1) noexcept {
     return a0 != a1 ? a0 < a1 : b0 < b1;

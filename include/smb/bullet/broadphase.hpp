@@ -189,8 +189,8 @@ private:
     /// Slot i holds the proxy whose m_uniqueId is i, or null.
     std::vector<std::unique_ptr<Proxy>> slots_;
     std::vector<std::uint32_t> free_ids_;
-    /// Ids destroyed since the last detection: their ended pairs are still to come from the
-    /// events, so they are not given out again before it.
+    /// Ids destroyed since the last detection: not given out again before it, so that a pair of
+    /// ids names the same two proxies in the candidates and in the detection's pairs.
     std::vector<std::uint32_t> retired_ids_;
     std::vector<std::uint32_t> moved_;
     std::vector<BoxId> move_ids_;
