@@ -66,6 +66,7 @@ btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVec
     if (boxes_.size() <= id) {
         boxes_.resize(id + 1, detail::empty_box());
         fat_boxes_.resize(id + 1, detail::empty_box());
+        fat_since_.resize(id + 1, 0);
         marks_.resize(id + 1, 0);
     }
     const Box<float, 3> fat = detail::grown(box, skin_);
@@ -73,6 +74,7 @@ btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVec
     free_ids_.pop_back();
     boxes_[id] = box;
     fat_boxes_[id] = fat;
+    fat_since_[id] = step_;
 
     Proxy& proxy = *slots_[id];
     proxy.m_clientObject = userPtr;
@@ -263,6 +265,7 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
     changed_ids_.clear();
     test_all_ = false;
     settle_restless_statics();
+    ++step_;
 }
 
 }  // namespace smb::bullet

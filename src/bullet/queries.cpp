@@ -116,6 +116,7 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     sort_spare_ = {};
     boxes_ = {};
     fat_boxes_ = {};
+    fat_since_ = {};
     candidates_ = {};
     merged_ = {};
     found_ = {};

@@ -12,6 +12,28 @@
 
 namespace smb::bullet {
 
+namespace {
+
+/// A box that kept inside its fat box this many steps before leaving it creeps.
+constexpr std::uint32_t steps_before_creeping = 16;
+/// A creeping box's skin, in skins: a pile at rest creeps, each box leaving a fat box of one
+/// skin every hundred steps or so, and each box that leaves costs an index query and a pass
+/// over the candidates; a thicker skin holds it several times as long.
+constexpr float creeping_skins = 2;
+
+}  // namespace
+
+float Broadphase::next_skin(std::uint32_t id) const {
+    const Box<float, 3>& box = boxes_[id];
+    const Box<float, 3>& fat = fat_boxes_[id];
+    // A box that left its fat box by more than a skin moves fast and would leave any skin at the
+    // next step, where its fat box would only bring the World more pairs. One that left by less
+    // drifts, and a new skin holds it for a while; longer, the thicker the skin, but a thick
+    // skin on the boxes of an avalanche brings the World as many pairs again.
+    if (!detail::contains(detail::grown(fat, skin_), box)) return 0;
+    return step_ - fat_since_[id] >= steps_before_creeping ? creeping_skins * skin_ : skin_;
+}
+
 void Broadphase::flush_moves() {
     if (moved_.empty()) return;
     move_ids_.clear();
@@ -21,12 +43,8 @@ void Broadphase::flush_moves() {
         const Box<float, 3>& box = boxes_[id];
         const Box<float, 3>& fat = fat_boxes_[id];
         if (detail::contains(fat, box)) continue;
-        // A box that left its fat box by less than the skin drifts, and a new skin holds it for a
-        // while; one that went further moves fast and would leave any skin at the next step,
-        // where its fat box would only bring the World more pairs.
-        const bool drifting = detail::contains(detail::grown(fat, skin_), box);
         move_ids_.push_back(id);
-        move_boxes_.push_back(drifting ? detail::grown(box, skin_) : box);
+        move_boxes_.push_back(detail::grown(box, next_skin(id)));
     }
     if (!move_ids_.empty()) world_.update(move_ids_, move_boxes_);
     for (const std::uint32_t id : moved_) marks_[id] &= static_cast<std::uint8_t>(~detail::moved_mark);
@@ -34,6 +52,7 @@ void Broadphase::flush_moves() {
     for (std::size_t i = 0; i < move_ids_.size(); ++i) {
         const auto id = static_cast<std::uint32_t>(move_ids_[i]);
         fat_boxes_[id] = move_boxes_[i];
+        fat_since_[id] = step_;
         if ((marks_[id] & detail::fresh_mark) == 0) fresh_.push_back(id);
         if ((marks_[id] & detail::stale_mark) == 0) stale_.push_back(id);
         marks_[id] |= detail::fresh_mark | detail::stale_mark;

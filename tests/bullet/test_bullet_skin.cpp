@@ -232,6 +232,66 @@ TEST(BulletSkin, ABoxLeavingItsFatBoxStepByStep) {
     EXPECT_EQ(count.seen, 0);
 }
 
+/// The fat box smb's World holds for the proxy, less the proxy's box: the skin on each side
+/// (equal on every side up to rounding; the least is returned).
+float skin_of(const Broadphase& broadphase, const btBroadphaseProxy* proxy) {
+    const smb::Box<float, 3> fat = broadphase.world().box(static_cast<smb::BoxId>(proxy->m_uniqueId));
+    float least = std::numeric_limits<float>::infinity();
+    for (int k = 0; k < 3; ++k) {
+        least = std::min({least, proxy->m_aabbMin[k] - fat.min[k], fat.max[k] - proxy->m_aabbMax[k]});
+    }
+    return least;
+}
+
+TEST(BulletSkin, ABoxCreepingGetsAThickerSkinAndAFastOneNone) {
+    // A column of unit boxes creeping 0.004 a step along x, into touch with a still column beside
+    // it and out again: each leaves its first fat box (skin 0.05) after a dozen steps and, having
+    // kept still that long, gets a skin of 0.1; thrown far, it gets none; the pairs stay exact.
+    WatchedCache cache;
+    Broadphase broadphase({}, &cache, 0.05f);
+    std::vector<btBroadphaseProxy*> proxies;
+    for (int i = 0; i < 6; ++i) {
+        const btVector3 still(0, 1.01f * static_cast<float>(i), 0);
+        proxies.push_back(broadphase.createProxy(still, still + btVector3(1, 1, 1), BOX_SHAPE_PROXYTYPE, nullptr,
+                                                 btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter,
+                                                 nullptr));
+    }
+    std::vector<btBroadphaseProxy*> creepers;
+    for (int i = 0; i < 6; ++i) {
+        const btVector3 start(1.1f, 1.01f * static_cast<float>(i), 0);
+        creepers.push_back(broadphase.createProxy(start, start + btVector3(1, 1, 1), BOX_SHAPE_PROXYTYPE, nullptr,
+                                                  btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter,
+                                                  nullptr));
+        proxies.push_back(creepers.back());
+    }
+    broadphase.calculateOverlappingPairs(nullptr);
+    EXPECT_NEAR(skin_of(broadphase, creepers[0]), 0.05f, 1e-5f);
+    bool thicker = false;
+    int most_pairs = 0;
+    for (int step = 1; step <= 120; ++step) {
+        // In by 0.48 over 60 steps, then out again.
+        const float x = 1.1f - 0.004f * static_cast<float>(step <= 60 ? step : 120 - step);
+        for (std::size_t i = 0; i < creepers.size(); ++i) {
+            const btVector3 min(x, 1.01f * static_cast<float>(i), 0);
+            broadphase.setAabb(creepers[i], min, min + btVector3(1, 1, 1), nullptr);
+        }
+        broadphase.calculateOverlappingPairs(nullptr);
+        ASSERT_EQ(smb::test::cache_pairs(cache), smb::test::expected_pairs(proxies, cache)) << "step " << step;
+        const float skin = skin_of(broadphase, creepers[0]);
+        EXPECT_TRUE(skin >= 0.0f && skin <= 0.1001f) << "step " << step << ": skin " << skin;
+        thicker = thicker || skin > 0.075f;
+        most_pairs = std::max(most_pairs, cache.getNumOverlappingPairs());
+    }
+    EXPECT_TRUE(thicker);
+    EXPECT_EQ(most_pairs, 6);                      // each in touch with the still box beside it
+    EXPECT_EQ(cache.getNumOverlappingPairs(), 0);  // apart again (the columns' boxes are 0.01 apart)
+    // Thrown far: no skin.
+    broadphase.setAabb(creepers[0], btVector3(20, 0, 0), btVector3(21, 1, 1), nullptr);
+    broadphase.calculateOverlappingPairs(nullptr);
+    EXPECT_NEAR(skin_of(broadphase, creepers[0]), 0.0f, 1e-5f);
+    EXPECT_EQ(smb::test::cache_pairs(cache), smb::test::expected_pairs(proxies, cache));
+}
+
 TEST(BulletSkin, ASkinThatIsNotFiniteAndPositiveIsRefused) {
     EXPECT_THROW(Broadphase({}, nullptr, -0.1f), smb::ArgumentError);
     EXPECT_THROW(Broadphase({}, nullptr, std::numeric_limits<float>::infinity()), smb::ArgumentError);

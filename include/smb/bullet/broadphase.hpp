@@ -121,6 +121,8 @@ private:
     [[nodiscard]] Proxy* live(BoxId id) const noexcept;
     /// Hands smb's World the fat boxes that the proxies' boxes left since the last call.
     void flush_moves();
+    /// The skin of the proxy's next fat box, its box having left its fat box.
+    [[nodiscard]] float next_skin(std::uint32_t id) const;
     void sync_filters();
     /// Brings the cache to the candidates whose boxes overlap now (test_candidate on each).
     void test_candidates(btDispatcher* dispatcher);
@@ -159,6 +161,9 @@ private:
     /// By id: each proxy's box (empty, pairing with nothing, once destroyed) and its fat box.
     std::vector<Box<float, 3>> boxes_;
     std::vector<Box<float, 3>> fat_boxes_;
+    /// By id: the step at which the fat box was set (steps count calculateOverlappingPairs).
+    std::vector<std::uint32_t> fat_since_;
+    std::uint32_t step_ = 0;
     /// Sorted by (a, b): the pairs of fat boxes of smb's last detection.
     std::vector<Candidate> candidates_;
     std::vector<Candidate> merged_;
