@@ -5,9 +5,11 @@
 #include "smb/bullet/broadphase.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "bullet/proxy.hpp"
@@ -236,12 +238,15 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
     const std::size_t fresh_limit = std::max<std::size_t>(64, live_ / 16);
     bool tested = false;
     if (changed_ || fresh_.size() > fresh_limit) {
-        pairs_.clear();
         // The pairs of the detection are merged with the candidates directly: sorted by a radix
         // sort, they cost less than comparing the two lists through hashed partitions. Exact because
         // an id is given out again only after a detection (retired_ids_): a pair of two ids
         // stands for the same two proxies in both lists.
-        world_.detect(pairs_);
+        pair_keys_.clear();
+        key_width_ = static_cast<int>(std::bit_width(slots_.size()));  // every id is below slots_.size()
+        world_.detect([this](std::span<const Pair> chunk) {
+            for (const Pair& pair : chunk) pair_keys_.push_back((pair.a << key_width_) | pair.b);
+        });
         const std::size_t retired_before = retired_ids_.size();
         changed_ = false;
         tested = true;

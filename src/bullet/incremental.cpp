@@ -11,8 +11,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "bullet/pair_keys.hpp"
 #include "bullet/proxy.hpp"
-#include "events/pair_radix_sort.hpp"
 #include "smb/bullet/broadphase.hpp"
 #include "smb/filter.hpp"
 
@@ -117,31 +117,29 @@ void Broadphase::update_fresh_candidates(btDispatcher* dispatcher) {
 }
 
 void Broadphase::reconcile_candidates(btDispatcher* dispatcher) {
-    smb::detail::PairSortScratch scratch{std::move(sort_keys_), std::move(sort_spare_)};
-    smb::detail::sort_pairs_fast(pairs_, scratch);
-    sort_keys_ = std::move(scratch.keys);
-    sort_spare_ = std::move(scratch.spare);
+    detail::sort_pair_keys(pair_keys_, 2 * key_width_, key_spare_, key_counts_);
     if (!candidates_sorted_) std::sort(candidates_.begin(), candidates_.end(), comes_before<Candidate>);
     candidates_sorted_ = true;
     merged_.clear();
-    merged_.reserve(pairs_.size());
+    merged_.reserve(pair_keys_.size());
     const auto keep = [this, dispatcher](const Candidate& candidate) {
         merged_.push_back(candidate);
         test_candidate(merged_.back(), dispatcher);
     };
-    const auto add = [this, dispatcher](const Candidate& candidate) {
-        merged_.push_back(candidate);
+    const int width = key_width_;
+    const std::uint64_t low = (std::uint64_t{1} << width) - 1;
+    const auto add = [this, dispatcher, width, low](std::uint64_t key) {
+        merged_.push_back(
+            Candidate{static_cast<std::uint32_t>(key >> width), static_cast<std::uint32_t>(key & low), Held::apart});
         test_new_candidate(merged_.back(), dispatcher);
     };
-    std::size_t next = 0;
-    const auto candidate_of = [](const Pair& pair) {
-        return Candidate{static_cast<std::uint32_t>(pair.a), static_cast<std::uint32_t>(pair.b), Held::apart};
-    };
+    // Keys order pairs as comes_before does.
+    const std::uint64_t* next = pair_keys_.data();
+    const std::uint64_t* const end = next + pair_keys_.size();
     for (const Candidate& candidate : candidates_) {
-        while (next < pairs_.size() && comes_before(candidate_of(pairs_[next]), candidate)) {
-            add(candidate_of(pairs_[next++]));
-        }
-        if (next < pairs_.size() && same_pair(candidate_of(pairs_[next]), candidate)) {
+        const std::uint64_t key = (std::uint64_t{candidate.a} << width) | candidate.b;
+        while (next != end && *next < key) add(*next++);
+        if (next != end && *next == key) {
             ++next;
             keep(candidate);
             continue;
@@ -151,7 +149,7 @@ void Broadphase::reconcile_candidates(btDispatcher* dispatcher) {
         Proxy* b = live(candidate.b);
         if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
     }
-    while (next < pairs_.size()) add(candidate_of(pairs_[next++]));
+    while (next != end) add(*next++);
     candidates_.swap(merged_);
 }
 

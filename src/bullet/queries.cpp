@@ -111,9 +111,9 @@ void Broadphase::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const
 void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     if (live_ != 0) return;
     world_.clear();
-    pairs_ = {};
-    sort_keys_ = {};
-    sort_spare_ = {};
+    pair_keys_ = {};
+    key_spare_ = {};
+    key_counts_ = {};
     boxes_ = {};
     fat_boxes_ = {};
     fat_since_ = {};
@@ -148,7 +148,8 @@ void Broadphase::printStats() {
                 live_, cache_->getNumOverlappingPairs(),
                 static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(),
                                                        [](const auto& slot) { return slot && slot->held_static; })),
-                world_.bytes_held() + pairs_.capacity() * sizeof(Pair) + candidates_.capacity() * sizeof(Candidate));
+                world_.bytes_held() + (pair_keys_.capacity() + key_spare_.capacity()) * sizeof(std::uint64_t) +
+                    candidates_.capacity() * sizeof(Candidate));
 }
 
 }  // namespace smb::bullet

@@ -34,8 +34,9 @@ namespace smb::bullet {
 /// changes it only when the proxy's box leaves it, so that boxes that jitter in place (a pile
 /// that does not fall asleep) change nothing there; the pairs of fat boxes are tested on the
 /// proxies' own boxes before they reach the cache. A box that left its fat box by more than the
-/// skin moves fast and is held without one until it slows down. Skin 0: the World holds the
-/// proxies' boxes themselves.
+/// skin moves fast and is held without one until it slows down; one that had kept inside its
+/// fat box for 16 steps before drifting out creeps, and is held with twice the skin. Skin 0: the
+/// World holds the proxies' boxes themselves.
 ///
 /// Filtering, as Bullet's pair cache decides it: while the cache has no overlap filter callback,
 /// proxies a and b pair when (a.group & b.mask) && (b.group & a.mask), read from the proxies at
@@ -70,7 +71,8 @@ public:
 
     /// `pair_cache`: the cache to maintain, as btDbvtBroadphase takes it (not owned; it must
     /// outlive the broad phase). Null: a btHashedOverlappingPairCache of its own. `skin`: how far
-    /// a box may move before smb's World sees it (above); ArgumentError unless finite and >= 0.
+    /// a box may move before smb's World sees it (twice as far for a creeping box, above);
+    /// ArgumentError unless finite and >= 0.
     explicit Broadphase(const WorldSettings& settings = {}, btOverlappingPairCache* pair_cache = nullptr,
                         float skin = default_skin);
     ~Broadphase() override;
@@ -135,7 +137,7 @@ private:
     /// Marks the proxy's box changed since the last calculateOverlappingPairs.
     void mark_changed(std::uint32_t id);
     void settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher);
-    /// After a detection: sorts pairs_ and makes the candidates exactly pairs_, in order: those
+    /// After a detection: sorts pair_keys_ and makes the candidates exactly those pairs, in order: those
     /// whose fat boxes stopped overlapping leave (and the cache, if it held them), those that
     /// began join, those that stay keep what the cache holds; every candidate is tested.
     void reconcile_candidates(btDispatcher* dispatcher);
@@ -152,11 +154,13 @@ private:
     void set_callback_mode(bool callback_mode);
 
     World<float, 3> world_;
-    /// The pairs of fat boxes of the last detection, sorted by (a, b) before the merge, and the
-    /// room its radix sort works in.
-    std::vector<Pair> pairs_;
-    std::vector<std::uint64_t> sort_keys_;
-    std::vector<std::uint64_t> sort_spare_;
+    /// The pairs of fat boxes of the last detection as keys (src/bullet/pair_keys.hpp), sorted
+    /// before the merge, and the room their radix sort works in.
+    std::vector<std::uint64_t> pair_keys_;
+    std::vector<std::uint64_t> key_spare_;
+    std::vector<std::uint32_t> key_counts_;
+    /// The width of a proxy id in pair_keys_: pair (a, b) is (a << key_width_) | b.
+    int key_width_ = 0;
     float skin_ = default_skin;
     /// By id: each proxy's box (empty, pairing with nothing, once destroyed) and its fat box.
     std::vector<Box<float, 3>> boxes_;
