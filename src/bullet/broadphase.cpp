@@ -69,6 +69,7 @@ btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVec
         boxes_.resize(id + 1, detail::empty_box());
         fat_boxes_.resize(id + 1, detail::empty_box());
         fat_since_.resize(id + 1, 0);
+        filters_.resize(id + 1);
         marks_.resize(id + 1, 0);
     }
     const Box<float, 3> fat = detail::grown(box, skin_);
@@ -85,13 +86,14 @@ btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVec
     proxy.m_aabbMin = aabbMin;
     proxy.m_aabbMax = aabbMax;
     proxy.m_uniqueId = static_cast<int>(id);
-    proxy.filter = Filter{};
     proxy.calm_steps = 0;
     proxy.alive = true;
     proxy.static_class = false;
     proxy.held_static = false;
     proxy.restless = false;
     proxy.partners.clear();
+    filters_[id] = Filter{};
+    marks_[id] |= detail::alive_mark;
     ++live_;
     changed_ = true;
     mark_changed(id);
@@ -110,6 +112,7 @@ void Broadphase::destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher
     boxes_[id] = detail::empty_box();
     mark_changed(id);
     own_proxy.alive = false;
+    marks_[id] &= static_cast<std::uint8_t>(~detail::alive_mark);
     own_proxy.m_clientObject = nullptr;
     --live_;
     changed_ = true;
@@ -162,13 +165,16 @@ void Broadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3
 }
 
 void Broadphase::sync_filters() {
+    // Every live proxy's bits, at every step: the liveness and the filter held are read from
+    // arrays by id, so that a proxy whose bits did not change costs one cache line of its own
+    // (that of Bullet's fields), which matters once the proxies outgrow the caches.
     for (std::size_t id = 0; id < slots_.size(); ++id) {
-        Proxy* proxy = live(id);
-        if (proxy == nullptr) continue;
+        if ((marks_[id] & detail::alive_mark) == 0) continue;
+        Proxy* proxy = slots_[id].get();
         const Filter filter = detail::filter_of(proxy->m_collisionFilterGroup, proxy->m_collisionFilterMask);
-        if (filter == proxy->filter) continue;
+        if (filter == filters_[id]) continue;
         world_.set_filter(id, filter);
-        proxy->filter = filter;
+        filters_[id] = filter;
         proxy->static_class = detail::is_static_class(proxy->m_collisionFilterGroup, proxy->m_collisionFilterMask);
         if (proxy->held_static && !proxy->static_class) {
             world_.set_static(id, false);
@@ -195,8 +201,8 @@ void Broadphase::set_callback_mode(bool callback_mode) {
         Proxy* proxy = live(id);
         if (proxy == nullptr) continue;
         if (proxy->held_static) world_.set_static(id, false);
-        if (proxy->filter != Filter{}) world_.set_filter(id, Filter{});
-        proxy->filter = Filter{};
+        if (filters_[id] != Filter{}) world_.set_filter(id, Filter{});
+        filters_[id] = Filter{};
         proxy->held_static = false;
         proxy->static_class = false;
     }

@@ -55,7 +55,7 @@ void Broadphase::update_fresh_candidates(btDispatcher* dispatcher) {
     // Between detections no proxy is created, destroyed or refiltered (each makes the next
     // calculateOverlappingPairs detect): the proxies named here are alive.
     const auto pass = [this](std::uint32_t a, std::uint32_t b) {
-        return callback_mode_ || filters_pass(slots_[a]->filter, slots_[b]->filter);
+        return callback_mode_ || filters_pass(filters_[a], filters_[b]);
     };
     const auto found = [this](std::uint32_t a, std::uint32_t b) {
         found_.push_back(Candidate{std::min(a, b), std::max(a, b), Held::apart});

@@ -15,8 +15,6 @@
 namespace smb::bullet {
 
 struct Broadphase::Proxy : btBroadphaseProxy {
-    /// The filter smb holds for this box (the default while the cache has a filter callback).
-    Filter filter{};
     /// Steps since the box last moved, for a static-class proxy held dynamic (restless_).
     std::uint32_t calm_steps = 0;
     bool alive = false;
@@ -36,11 +34,12 @@ namespace detail {
 /// UnknownIdError, out of the way of the calls that check their proxy.
 [[noreturn]] void throw_unknown_proxy();
 
-/// marks_: the id is listed in fresh_, in stale_, in moved_, in changed_ids_.
+/// marks_: the id is listed in fresh_, in stale_, in moved_, in changed_ids_; its proxy is alive.
 inline constexpr std::uint8_t fresh_mark = 1;
 inline constexpr std::uint8_t stale_mark = 2;
 inline constexpr std::uint8_t moved_mark = 4;
 inline constexpr std::uint8_t changed_mark = 8;
+inline constexpr std::uint8_t alive_mark = 16;
 }  // namespace detail
 
 namespace detail {

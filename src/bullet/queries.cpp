@@ -117,6 +117,7 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     boxes_ = {};
     fat_boxes_ = {};
     fat_since_ = {};
+    filters_ = {};
     candidates_ = {};
     merged_ = {};
     found_ = {};

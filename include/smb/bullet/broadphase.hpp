@@ -12,6 +12,7 @@
 
 #include "smb/box.hpp"
 #include "smb/box_index.hpp"
+#include "smb/filter.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
 #include "smb/world.hpp"
@@ -167,6 +168,9 @@ private:
     std::vector<Box<float, 3>> fat_boxes_;
     /// By id: the step at which the fat box was set (steps count calculateOverlappingPairs).
     std::vector<std::uint32_t> fat_since_;
+    /// By id: the filter smb holds for the proxy's box (the default while the cache has a filter
+    /// callback).
+    std::vector<Filter> filters_;
     std::uint32_t step_ = 0;
     /// Sorted by (a, b): the pairs of fat boxes of smb's last detection.
     std::vector<Candidate> candidates_;
