@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The detection's pairs as sorted keys (a << w) | b, w the width of the largest proxy id: the
-// order of the candidates, compared in one integer comparison. A Bullet world holds thousands to
-// a few hundred thousand proxies, so a key has 28 to 40 bits, and a least-significant-digit
-// radix sort with digits of up to 16 bits sorts it in two or three passes.
+// order of the candidates, compared in one integer comparison. With ten thousand to a million
+// proxies a key has 28 to 40 bits, and a least-significant-digit radix sort with digits of up to
+// 16 bits sorts the keys in two or three passes.
 
 #include <algorithm>
 #include <cstddef>

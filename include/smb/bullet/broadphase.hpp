@@ -138,9 +138,10 @@ private:
     /// Marks the proxy's box changed since the last calculateOverlappingPairs.
     void mark_changed(std::uint32_t id);
     void settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher);
-    /// After a detection: sorts pair_keys_ and makes the candidates exactly those pairs, in order: those
-    /// whose fat boxes stopped overlapping leave (and the cache, if it held them), those that
-    /// began join, those that stay keep what the cache holds; every candidate is tested.
+    /// After a detection: sorts pair_keys_ and makes the candidates exactly those pairs, in
+    /// order: those whose fat boxes stopped overlapping leave (and the cache, if it held them),
+    /// those that began join, those that stay keep what the cache holds; every candidate is
+    /// tested.
     void reconcile_candidates(btDispatcher* dispatcher);
     /// Without a detection: the candidates of the fat boxes changed in this step (fresh_), found
     /// through index_ and among the stale boxes, replace those they had.
