@@ -249,21 +249,20 @@ TEST(BulletSkin, ABoxCreepingGetsAThickerSkinAndAFastOneNone) {
     // kept still that long, gets a skin of 0.1; thrown far, it gets none; the pairs stay exact.
     WatchedCache cache;
     Broadphase broadphase({}, &cache, 0.05f);
-    std::vector<btBroadphaseProxy*> proxies;
-    for (int i = 0; i < 6; ++i) {
-        const btVector3 still(0, 1.01f * static_cast<float>(i), 0);
-        proxies.push_back(broadphase.createProxy(still, still + btVector3(1, 1, 1), BOX_SHAPE_PROXYTYPE, nullptr,
-                                                 btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter,
-                                                 nullptr));
-    }
-    std::vector<btBroadphaseProxy*> creepers;
-    for (int i = 0; i < 6; ++i) {
-        const btVector3 start(1.1f, 1.01f * static_cast<float>(i), 0);
-        creepers.push_back(broadphase.createProxy(start, start + btVector3(1, 1, 1), BOX_SHAPE_PROXYTYPE, nullptr,
-                                                  btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter,
-                                                  nullptr));
-        proxies.push_back(creepers.back());
-    }
+    // Six unit boxes 0.01 apart up the y axis, from x.
+    const auto column = [&broadphase](float x) {
+        std::vector<btBroadphaseProxy*> boxes;
+        for (int i = 0; i < 6; ++i) {
+            const btVector3 min(x, 1.01f * static_cast<float>(i), 0);
+            boxes.push_back(broadphase.createProxy(min, min + btVector3(1, 1, 1), BOX_SHAPE_PROXYTYPE, nullptr,
+                                                   btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter,
+                                                   nullptr));
+        }
+        return boxes;
+    };
+    std::vector<btBroadphaseProxy*> proxies = column(0.0f);
+    const std::vector<btBroadphaseProxy*> creepers = column(1.1f);
+    proxies.insert(proxies.end(), creepers.begin(), creepers.end());
     broadphase.calculateOverlappingPairs(nullptr);
     EXPECT_NEAR(skin_of(broadphase, creepers[0]), 0.05f, 1e-5f);
     bool thicker = false;
