@@ -72,10 +72,6 @@ TEST(WorldFilters, StaticsTouchingWithinAFloatOfAMovingBoxPairExactly) {
     EXPECT_EQ(pairs, expected);
 }
 
-/// Statics whose faces lie within a few steps of a moving box's lattice (a 32767th of its fat
-/// box's side, quantized_bounds.hpp) of the moving boxes' faces, on every axis and both sides,
-/// and moving boxes that creep across them by a fraction of a step at each detection, inside
-/// their fat boxes: every detection against brute force.
 /// Brute force over statics (every id below every moving id) and moving boxes: the pairs of a
 /// static and a moving box and of two moving boxes, sorted.
 template <std::floating_point Real, int Dim>
@@ -96,6 +92,30 @@ std::vector<Pair> static_and_moving_pairs(const std::map<BoxId, Box<Real, Dim>>&
     return expected;
 }
 
+/// `steps` steps: `move(id, box)` may change each moving box and says whether it did; the World
+/// is given the boxes that changed, and every detection is compared with brute force.
+template <std::floating_point Real, int Dim, class Move>
+void step_against_brute_force(World<Real, Dim>& world, const std::map<BoxId, Box<Real, Dim>>& statics,
+                              std::map<BoxId, Box<Real, Dim>>& moving, int steps, Move move) {
+    std::vector<Pair> pairs;
+    for (int step = 0; step < steps; ++step) {
+        std::vector<BoxId> ids;
+        std::vector<Box<Real, Dim>> boxes;
+        for (auto& [id, b] : moving) {
+            if (!move(id, b)) continue;
+            ids.push_back(id);
+            boxes.push_back(b);
+        }
+        world.update(ids, boxes);
+        world.detect(pairs);
+        ASSERT_TRUE(same_pairs(pairs, static_and_moving_pairs(statics, moving))) << "step " << step;
+    }
+}
+
+/// Statics whose faces lie within a few steps of a moving box's lattice (a 32767th of its fat
+/// box's side, quantized_bounds.hpp) of the moving boxes' faces, on every axis and both sides,
+/// and moving boxes that creep across them by a fraction of a step at each detection, inside
+/// their fat boxes: every detection against brute force.
 template <std::floating_point Real, int Dim>
 void check_statics_within_a_lattice_step() {
     using B = Box<Real, Dim>;
@@ -195,22 +215,11 @@ void check_statics_of_mixed_sizes(std::uint64_t seed) {
         moving[id] = random_box<Real, Dim>(random, 0, space, 0.2, 3);
         world.insert(id, moving[id]);
     }
-    std::vector<Pair> pairs;
-    for (int step = 0; step < 20; ++step) {
-        std::vector<BoxId> ids;
-        std::vector<B> boxes;
-        for (auto& [id, b] : moving) {
-            if (chance(random, 0.2)) continue;  // stays where it is
-            b = chance(random, 0.02) ? random_box<Real, Dim>(random, 0, space, 0.2, 3)
-                                     : perturbed(random, b, 0.3, 0.05);
-            ids.push_back(id);
-            boxes.push_back(b);
-        }
-        world.update(ids, boxes);
-        world.detect(pairs);
-        const std::vector<Pair> expected = static_and_moving_pairs(statics, moving);
-        ASSERT_TRUE(same_pairs(pairs, expected)) << "step " << step;
-    }
+    step_against_brute_force(world, statics, moving, 20, [&](BoxId, B& b) {
+        if (chance(random, 0.2)) return false;  // stays where it is
+        b = chance(random, 0.02) ? random_box<Real, Dim>(random, 0, space, 0.2, 3) : perturbed(random, b, 0.3, 0.05);
+        return true;
+    });
 }
 
 TEST(WorldFilters, StaticsOfMixedSizesMatchBruteForce) {
@@ -262,25 +271,15 @@ void check_boxes_creeping_across_static_faces(std::uint64_t seed) {
         moving[id] = b;
         world.insert(id, b);
     }
-    std::vector<Pair> pairs;
-    for (int step = 0; step < 300; ++step) {
-        std::vector<BoxId> ids;
-        std::vector<B> boxes;
-        for (auto& [id, b] : moving) {
-            for (int k = 0; k < Dim; ++k) {
-                if (chance(random, 0.03)) pace[id][k] = -pace[id][k];
-                const auto by = static_cast<Real>(kStep * pace[id][k]);
-                b.min[k] += by;
-                b.max[k] += by;
-            }
-            ids.push_back(id);
-            boxes.push_back(b);
+    step_against_brute_force(world, statics, moving, 300, [&](BoxId id, B& b) {
+        for (int k = 0; k < Dim; ++k) {
+            if (chance(random, 0.03)) pace[id][k] = -pace[id][k];
+            const auto by = static_cast<Real>(kStep * pace[id][k]);
+            b.min[k] += by;
+            b.max[k] += by;
         }
-        world.update(ids, boxes);
-        world.detect(pairs);
-        const std::vector<Pair> expected = static_and_moving_pairs(statics, moving);
-        ASSERT_TRUE(same_pairs(pairs, expected)) << "step " << step;
-    }
+        return true;
+    });
 }
 
 TEST(WorldFilters, BoxesCreepingAcrossStaticFacesMatchBruteForce) {
