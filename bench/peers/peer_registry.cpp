@@ -1,7 +1,17 @@
 // SPDX-License-Identifier: MIT
+#include <cstdlib>
+#include <string>
+
 #include "peers/peer_factories.hpp"
 
 namespace smb::bench {
+namespace {
+
+// The Verlet grid's skin on scenes whose largest box side is 1: the skin that gave the lowest
+// mean step on the paper's scene at Λ = 1e-5 (docs/performance.md).
+constexpr float default_verlet_skin = 0.05f;
+
+}  // namespace
 
 std::vector<PeerInfo> available_peers() {
     std::vector<PeerInfo> peers = {
@@ -16,6 +26,8 @@ std::vector<PeerInfo> available_peers() {
         {"brute_force", true, true},
         {"box_pruning", true, true},
         {"uniform_grid", true, true},
+        {"uniform_grid_2threads", true, true},
+        {"verlet_grid", true, true},
         {"uniform_grid_every_cell", true, true},
     };
 #if SMB_BENCH_HAVE_CGAL
@@ -66,7 +78,17 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
     }
     if (name == "brute_force") return make_brute_force_peer<Dim>();
     if (name == "box_pruning") return make_box_pruning_peer<Dim>();
-    if (name == "uniform_grid") return make_uniform_grid_peer<Dim>();
+    if (name == "uniform_grid") return make_uniform_grid_peer<Dim>(1);
+    if (name == "uniform_grid_2threads") return make_uniform_grid_peer<Dim>(2);
+    if (name == "verlet_grid") return make_verlet_grid_peer<Dim>(default_verlet_skin);
+    // verlet_grid:SKIN, any other skin.
+    if (name.starts_with("verlet_grid:")) {
+        const std::string skin(name.substr(name.find(':') + 1));
+        char* end = nullptr;
+        const float value = std::strtof(skin.c_str(), &end);
+        if (end == skin.c_str() || *end != '\0' || !(value >= 0)) return nullptr;
+        return make_verlet_grid_peer<Dim>(value);
+    }
     if (name == "uniform_grid_every_cell") return make_uniform_grid_every_cell_peer<Dim>();
 #if SMB_BENCH_HAVE_CGAL
     if (name == "cgal_box_intersection") return make_cgal_box_intersection_peer<Dim>();

@@ -1,57 +1,138 @@
 // SPDX-License-Identifier: MIT
 #include "peers/uniform_grid.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <thread>
+
 #include "peers/peer.hpp"
 
 namespace smb::bench {
 namespace {
 
-// Below this many boxes testing every pair is faster than laying out a grid.
-constexpr std::size_t brute_force_below = 64;
 // A box is oversized when an extent exceeds this multiple of that axis's 95th percentile.
 constexpr double oversize_factor = 2.0;
 constexpr double oversize_quantile = 0.95;
 constexpr std::size_t sample_size = 1024;
-// The cell side exceeds the largest extent by this relative margin (see the header: exactness).
-constexpr double side_margin = 1e-6;
-// The dense array may hold at most this many cells per box (sparse scenes get larger cells).
-constexpr double cells_per_box_limit = 2.0;
+// Cells per axis at most: the coordinates stay exact in float.
+constexpr double most_cells_per_axis = 0x1p20;
+// Positions the gather reads ahead of the one it copies.
+constexpr std::size_t prefetch_ahead = 16;
+// Below this many boxes a second thread costs more than it saves.
+constexpr std::size_t threads_from = 4096;
+constexpr std::uint32_t not_in_cells = std::numeric_limits<std::uint32_t>::max();
+
+/// The largest of these differences rounded up to a float: no extent exceeds it.
+float rounded_up(double extent) {
+    auto rounded = static_cast<float>(extent);
+    if (static_cast<double>(rounded) < extent)
+        rounded = std::nextafter(rounded, std::numeric_limits<float>::infinity());
+    return rounded;
+}
+
+/// Appends the hits of one run of positions, [from, to), after the `used` first of `hits`.
+template <std::size_t Lanes, int Dim>
+[[gnu::always_inline]] inline std::size_t append_hits(const grid_lanes::Columns<Dim>& columns,
+                                                      const grid_lanes::Query<Lanes, Dim>& query, std::uint32_t from,
+                                                      std::uint32_t to, std::vector<std::uint32_t>& hits,
+                                                      std::size_t used) {
+    if (from >= to) return used;
+    if (used + (to - from) + Lanes > hits.size()) hits.resize(2 * (used + (to - from) + Lanes));
+    return static_cast<std::size_t>(grid_lanes::test_run<Lanes, Dim>(columns, query, from, to, hits.data() + used) -
+                                    hits.data());
+}
 
 }  // namespace
 
 template <int Dim>
+struct UniformGrid<Dim>::IdSink {
+    const BoxId* ids = nullptr;
+    std::vector<Pair>* pairs = nullptr;
+    void emit(Index position, const Index* hit, const Index* end) const {
+        const BoxId id = ids[position];
+        for (; hit != end; ++hit) {
+            const BoxId other = ids[*hit];
+            pairs->push_back(Pair{std::min(id, other), std::max(id, other)});
+        }
+    }
+};
+
+template <int Dim>
+struct UniformGrid<Dim>::PositionSink {
+    std::vector<PositionPair>* pairs = nullptr;
+    void emit(Index position, const Index* hit, const Index* end) const {
+        for (; hit != end; ++hit) pairs->push_back(PositionPair{position, *hit});
+    }
+};
+
+template <int Dim>
+UniformGrid<Dim>::UniformGrid(Shape shape, int threads)
+    : shape_(shape), threads_(std::clamp(threads, 1, 2)), lanes_(grid_lanes::best_lanes()) {}
+
+template <int Dim>
 void UniformGrid<Dim>::find_pairs(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids,
                                   std::vector<Pair>& pairs) {
-    oversized_boxes_.clear();
-    oversized_ids_.clear();
-    if (boxes.size() < brute_force_below) {
-        brute_force(boxes, ids, pairs);
-        return;
-    }
-    choose_oversize_limits(boxes);
-    measure(boxes, ids);
-    if (oversized_ids_.size() > boxes.size() / 2) {
-        // The sample misjudged the sizes: no box is oversized then.
-        oversize_limit_.fill(std::numeric_limits<float>::infinity());
-        oversized_boxes_.clear();
-        oversized_ids_.clear();
-        measure(boxes, ids);
-    }
-    lay_out(boxes.size() - oversized_ids_.size());
-    sort_into_cells(boxes, ids);
-    pairs_in_cells(pairs);
-    if (oversized_ids_.empty()) return;
-    oversized_against_cells(pairs);
-    if (!oversized_grid_) oversized_grid_ = std::make_unique<UniformGrid>();
+    arrange(boxes, ids);
+    second_thread_pairs_.clear();
+    std::array<IdSink, 2> sinks{IdSink{ids_.data(), &pairs}, IdSink{ids_.data(), &second_thread_pairs_}};
+    run_threads(sinks);
+    pairs.insert(pairs.end(), second_thread_pairs_.begin(), second_thread_pairs_.end());
+    if (oversized_boxes_.empty()) return;
+    if (!oversized_grid_) oversized_grid_ = std::make_unique<UniformGrid>(shape_, 1);
     oversized_grid_->find_pairs(oversized_boxes_, oversized_ids_, pairs);
 }
 
 template <int Dim>
-void UniformGrid<Dim>::brute_force(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids,
-                                   std::vector<Pair>& pairs) const {
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-        for (std::size_t j = i + 1; j < boxes.size(); ++j)
-            if (overlaps(boxes[i], boxes[j])) pairs.push_back(ordered_pair(ids[i], ids[j]));
+void UniformGrid<Dim>::find_position_pairs(std::span<const BenchBox<Dim>> boxes, std::vector<PositionPair>& pairs) {
+    arrange(boxes, {});
+    second_thread_position_pairs_.clear();
+    std::array<PositionSink, 2> sinks{PositionSink{&pairs}, PositionSink{&second_thread_position_pairs_}};
+    run_threads(sinks);
+    pairs.insert(pairs.end(), second_thread_position_pairs_.begin(), second_thread_position_pairs_.end());
+    if (oversized_boxes_.empty()) return;
+    if (!oversized_grid_) oversized_grid_ = std::make_unique<UniformGrid>(shape_, 1);
+    oversized_pairs_.clear();
+    oversized_grid_->find_position_pairs(oversized_boxes_, oversized_pairs_);
+    const auto nested_order = oversized_grid_->order();
+    const auto first = static_cast<Index>(grid_count_);
+    for (const PositionPair& pair : oversized_pairs_)
+        pairs.push_back(PositionPair{first + nested_order[pair.a], first + nested_order[pair.b]});
+}
+
+template <int Dim>
+void UniformGrid<Dim>::arrange(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids) {
+    oversized_boxes_.clear();
+    oversized_ids_.clear();
+    order_.clear();
+    grid_count_ = 0;
+    if (boxes.empty()) return;
+    choose_oversize_limits(boxes);
+    measure(boxes);
+    if (grid_count_ < boxes.size() / 2) {
+        // The sample misjudged the sizes: no box is oversized then.
+        oversize_limit_.fill(std::numeric_limits<float>::infinity());
+        measure(boxes);
+    }
+    lay_out(grid_count_);
+    sort_into_cells(boxes);
+    const std::size_t count = boxes.size();
+    for (int k = 0; k < Dim; ++k) {
+        min_[k].resize(count + padding);
+        max_[k].resize(count + padding);
+    }
+    ids_.resize(ids.empty() ? 0 : count);
+    if (threads_ > 1 && count >= threads_from) {
+        std::thread second([&] { gather(boxes, ids, count / 2, count); });
+        gather(boxes, ids, 0, count / 2);
+        second.join();
+    } else {
+        gather(boxes, ids, 0, count);
+    }
+    for (std::size_t p = grid_count_; p < count; ++p) {
+        oversized_boxes_.push_back(boxes[order_[p]]);
+        if (!ids.empty()) oversized_ids_.push_back(ids[order_[p]]);
+    }
 }
 
 // From an evenly spaced sample: cheap, and only a matter of speed, since oversized boxes are
@@ -68,22 +149,17 @@ void UniformGrid<Dim>::choose_oversize_limits(std::span<const BenchBox<Dim>> box
     }
 }
 
-// The range of the grid boxes' lower corners and their largest extents; oversized boxes set aside.
+// The lowest lower corner and the largest extent of the boxes that go into the cells.
 template <int Dim>
-void UniformGrid<Dim>::measure(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids) {
-    low_.fill(std::numeric_limits<double>::infinity());
-    high_.fill(-std::numeric_limits<double>::infinity());
+void UniformGrid<Dim>::measure(std::span<const BenchBox<Dim>> boxes) {
     std::array<float, Dim> low{}, high{};
+    std::array<double, Dim> largest{};
     low.fill(std::numeric_limits<float>::infinity());
     high.fill(-std::numeric_limits<float>::infinity());
-    std::array<double, Dim> largest{};
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-        const BenchBox<Dim>& box = boxes[i];
-        if (is_oversized(box)) {
-            oversized_boxes_.push_back(box);
-            oversized_ids_.push_back(ids[i]);
-            continue;
-        }
+    std::size_t in_cells = 0;
+    for (const BenchBox<Dim>& box : boxes) {
+        if (is_oversized(box)) continue;
+        ++in_cells;
         for (int k = 0; k < Dim; ++k) {
             low[k] = std::min(low[k], box.min[k]);
             high[k] = std::max(high[k], box.min[k]);
@@ -91,11 +167,12 @@ void UniformGrid<Dim>::measure(std::span<const BenchBox<Dim>> boxes, std::span<c
             largest[k] = std::max(largest[k], static_cast<double>(box.max[k]) - static_cast<double>(box.min[k]));
         }
     }
+    grid_count_ = in_cells;
     for (int k = 0; k < Dim; ++k) {
-        low_[k] = low[k];
-        high_[k] = high[k];
-        // Guards the last-bit rounding of that difference where it was not exact.
-        largest_extent_[k] = largest[k] * (1 + 1e-9);
+        low_[k] = in_cells ? low[k] : 0.0f;
+        // The margin covers a difference that was not exact in double.
+        largest_extent_[k] = rounded_up(largest[k] * (1 + 0x1p-40));
+        range_[k] = in_cells ? static_cast<double>(high[k]) - static_cast<double>(low[k]) : 0.0;
     }
 }
 
@@ -103,127 +180,180 @@ template <int Dim>
 void UniformGrid<Dim>::lay_out(std::size_t box_count) {
     std::array<double, Dim> side{};
     for (int k = 0; k < Dim; ++k) {
-        const double range = std::max(high_[k] - low_[k], 0.0);
-        // A positive side even for flat boxes: about 2^20 cells at most along the range.
-        side[k] = std::max({largest_extent_[k] * (1 + side_margin), range * 0x1p-20, 1e-30});
+        const double multiple = k == 0 ? shape_.x_side : shape_.other_sides;
+        side[k] = std::max({multiple * static_cast<double>(largest_extent_[k]), range_[k] / most_cells_per_axis,
+                            static_cast<double>(std::numeric_limits<float>::min())});
     }
-    const double cell_limit = cells_per_box_limit * static_cast<double>(box_count) + 64;
+    const double cell_limit = shape_.cells_per_box * static_cast<double>(box_count) + 64;
     for (;;) {
         double total = 1;
-        for (int k = 0; k < Dim; ++k) {
-            const double range = std::max(high_[k] - low_[k], 0.0);
-            cells_[k] = static_cast<std::int64_t>(std::floor(range / side[k])) + 1;
-            total *= static_cast<double>(cells_[k] + 2);
-        }
+        for (int k = 0; k < Dim; ++k) total *= std::floor(range_[k] / side[k]) + 1;
         if (total <= cell_limit) break;
         for (int k = 0; k < Dim; ++k) side[k] *= 1.25;
     }
-    std::int64_t stride = 1;
+    cell_total_ = 1;
     for (int k = 0; k < Dim; ++k) {
-        inverse_side_[k] = 1 / side[k];
-        stride_[k] = stride;
-        stride *= cells_[k] + 2;
+        cells_[k] = static_cast<std::size_t>(std::floor(range_[k] / side[k])) + 1;
+        cell_total_ *= cells_[k];
+        inverse_side_[k] = static_cast<float>(1 / side[k]);
+        last_cell_[k] = static_cast<float>(cells_[k] - 1);
     }
-    cell_total_ = static_cast<std::size_t>(stride);
 }
 
-// A counting sort: count per cell, prefix sums, then each record goes to the next free slot of
+// A counting sort: count per cell, prefix sums, then each box goes to the next free position of
 // its cell. cell_begin_[c + 1] serves as cell c's fill position, so that when the fill ends it
-// holds cell c's end, which is cell c + 1's begin: no second array.
+// holds cell c's end, which is cell c + 1's begin: no second array. The oversized boxes follow.
 template <int Dim>
-void UniformGrid<Dim>::sort_into_cells(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids) {
+void UniformGrid<Dim>::sort_into_cells(std::span<const BenchBox<Dim>> boxes) {
     cell_of_box_.resize(boxes.size());
     cell_begin_.assign(cell_total_ + 2, 0);
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         if (is_oversized(boxes[i])) {
-            cell_of_box_[i] = not_in_grid;
+            cell_of_box_[i] = not_in_cells;
             continue;
         }
-        const Index cell = flat_cell(boxes[i].min);
-        cell_of_box_[i] = cell;
+        const std::size_t cell = flat_cell(boxes[i].min);
+        cell_of_box_[i] = static_cast<Index>(cell);
         ++cell_begin_[cell + 2];
     }
     for (std::size_t c = 2; c < cell_begin_.size(); ++c) cell_begin_[c] += cell_begin_[c - 1];
-    records_.resize(boxes.size() - oversized_ids_.size());
+    order_.resize(boxes.size());
+    auto next_oversized = static_cast<Index>(grid_count_);
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         const Index cell = cell_of_box_[i];
-        if (cell == not_in_grid) continue;
-        records_[cell_begin_[cell + 1]++] = record_of(boxes[i], ids[i]);
+        const Index position = cell == not_in_cells ? next_oversized++ : cell_begin_[cell + 1]++;
+        order_[position] = static_cast<Index>(i);
     }
 }
 
-// Each cell against itself and its upper-half neighbours: (+1, 0, 0), (-1..1, +1, 0) and
-// (-1..1, -1..1, +1) in 3D; (+1, 0) and (-1..1, +1) in 2D. A pair of overlapping boxes whose
-// lower corners lie in cells a and b is tested from a if b - a is in that half, from b otherwise.
-// A box whose upper corner stays in its own cell on an axis cannot overlap a box whose lower
-// corner lies in the next cell on that axis (the cell coordinate is monotone), so those
-// neighbours are skipped for it: about 40% of the tests on boxes of similar size.
+// The caller's boxes are read in cell order, which is random in memory: the box some positions
+// ahead is prefetched, both its first and its last byte, since a box may straddle two lines.
 template <int Dim>
-void UniformGrid<Dim>::pairs_in_cells(std::vector<Pair>& pairs) const {
+void UniformGrid<Dim>::gather(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids, std::size_t from,
+                              std::size_t to) {
+    const Index* order = order_.data();
+    for (std::size_t p = from; p < to; ++p) {
+        if (p + prefetch_ahead < to) {
+            const auto* ahead = reinterpret_cast<const char*>(&boxes[order[p + prefetch_ahead]]);
+            __builtin_prefetch(ahead);
+            __builtin_prefetch(ahead + sizeof(BenchBox<Dim>) - 1);
+            if (!ids.empty()) __builtin_prefetch(&ids[order[p + prefetch_ahead]]);
+        }
+        const BenchBox<Dim>& box = boxes[order[p]];
+        for (int k = 0; k < Dim; ++k) {
+            min_[k][p] = box.min[k];
+            max_[k][p] = box.max[k];
+        }
+        if (!ids.empty()) ids_[p] = ids[order[p]];
+    }
+}
+
+template <int Dim>
+template <class Sink>
+void UniformGrid<Dim>::run_threads(std::array<Sink, 2>& sinks) {
+    const std::size_t count = order_.size();
+    if (threads_ > 1 && count >= threads_from) {
+        std::thread second([&] { scan(sinks[1], count / 2, count, hits_[1]); });
+        scan(sinks[0], 0, count / 2, hits_[0]);
+        second.join();
+    } else {
+        scan(sinks[0], 0, count, hits_[0]);
+    }
+}
+
+template <int Dim>
+template <class Sink>
+void UniformGrid<Dim>::scan(Sink& sink, std::size_t from, std::size_t to, std::vector<Index>& hits) const {
+#if SMB_BENCH_WIDE_LANES
+    if (lanes_ == 8) return scan_avx2(sink, from, to, hits);
+#endif
+    scan_in_lanes<4>(sink, from, to, hits);
+}
+
+template <int Dim>
+template <class Sink>
+[[gnu::target("avx2,popcnt")]] void UniformGrid<Dim>::scan_avx2(Sink& sink, std::size_t from, std::size_t to,
+                                                                std::vector<Index>& hits) const {
+    scan_in_lanes<8>(sink, from, to, hits);
+}
+
+// The boxes at positions [from, to), each against the runs of positions its window reaches (see
+// the header); a box in the cells only against later rows and the rest of its own, an oversized
+// box against every row of its window.
+template <int Dim>
+template <std::size_t Lanes, class Sink>
+[[gnu::always_inline]] inline void UniformGrid<Dim>::scan_in_lanes(Sink& sink, std::size_t from, std::size_t to,
+                                                                   std::vector<Index>& hits) const {
+    const grid_lanes::Columns<Dim> columns = this->columns();
     const Index* begin = cell_begin_.data();
-    const Record* records = records_.data();
-    auto test_range = [&](const Query& query, BoxId id, Index from, Index to) {
-        for (Index j = from; j < to; ++j)
-            if (overlap(query, records[j])) pairs.push_back(ordered_pair(id, records[j].id));
-    };
-    // Cells [cell - 1, cell + 1] of a neighbour row, the last one only when the box reaches it.
-    auto test_row = [&](const Query& query, BoxId id, std::int64_t cell, std::int64_t reaches_x) {
-        test_range(query, id, begin[cell - 1], begin[cell + 1 + reaches_x]);
-    };
-    auto visit_row = [&](std::int64_t row_start, std::array<std::int64_t, Dim> at) {
-        for (std::int64_t x = 1; x <= cells_[0]; ++x) {
-            const std::int64_t cell = row_start + x;
-            const Index first = begin[cell], end = begin[cell + 1];
-            if (first == end) continue;
-            at[0] = x;
-            for (Index i = first; i < end; ++i) {
-                const Query a = query_of(records[i]);
-                const BoxId id = records[i].id;
-                std::array<std::int64_t, Dim> reaches{};
-                for (int k = 0; k < Dim; ++k) reaches[k] = lower_corner_coordinate(a.lanes[k], k) + 1 > at[k];
-                test_range(a, id, i + 1, begin[cell + 1 + reaches[0]]);
-                if (reaches[1]) test_row(a, id, cell + stride_[1], reaches[0]);
-                if constexpr (Dim == 3) {
-                    if (!reaches[2]) continue;
-                    test_row(a, id, cell + stride_[2] - stride_[1], reaches[0]);
-                    test_row(a, id, cell + stride_[2], reaches[0]);
-                    if (reaches[1]) test_row(a, id, cell + stride_[2] + stride_[1], reaches[0]);
+    const std::size_t row_length = cells_[0];
+    const std::size_t plane = Dim == 3 ? cells_[0] * cells_[1] : 0;
+    for (std::size_t p = from; p < to; ++p) {
+        std::array<float, Dim> min, max;
+        std::array<Index, Dim> own, low, high;
+        for (int k = 0; k < Dim; ++k) {
+            min[k] = columns.min[k][p];
+            max[k] = columns.max[k][p];
+            own[k] = cell_of(min[k], k);
+            low[k] = cell_of(min[k] - largest_extent_[k], k);
+            high[k] = cell_of(max[k], k);
+        }
+        const auto query = grid_lanes::splat<Lanes, Dim>(min, max);
+        std::size_t used = 0;
+        // Positions [begin[row + low[0]], begin[row + high[0] + 1]) of the row starting at cell `row`.
+        const auto first_in = [&](std::size_t row) { return begin[row + low[0]]; };
+        const auto end_in = [&](std::size_t row) { return begin[row + high[0] + 1]; };
+        if (p < grid_count_) {
+            std::size_t row = own[1] * row_length + (Dim == 3 ? own[Dim - 1] * plane : 0);
+            used = append_hits<Lanes, Dim>(columns, query, static_cast<Index>(p + 1), end_in(row), hits, used);
+            for (Index y = own[1] + 1; y <= high[1]; ++y) {
+                row += row_length;
+                used = append_hits<Lanes, Dim>(columns, query, first_in(row), end_in(row), hits, used);
+            }
+            if constexpr (Dim == 3) {
+                for (Index z = own[2] + 1; z <= high[2]; ++z) {
+                    for (Index y = low[1]; y <= high[1]; ++y) {
+                        const std::size_t next = z * plane + y * row_length;
+                        used = append_hits<Lanes, Dim>(columns, query, first_in(next), end_in(next), hits, used);
+                    }
+                }
+            }
+        } else {
+            const Index z_low = Dim == 3 ? low[Dim - 1] : 0, z_high = Dim == 3 ? high[Dim - 1] : 0;
+            for (Index z = z_low; z <= z_high; ++z) {
+                for (Index y = low[1]; y <= high[1]; ++y) {
+                    const std::size_t row = z * plane + y * row_length;
+                    used = append_hits<Lanes, Dim>(columns, query, first_in(row), end_in(row), hits, used);
                 }
             }
         }
-    };
-    if constexpr (Dim == 3) {
-        for (std::int64_t z = 1; z <= cells_[2]; ++z)
-            for (std::int64_t y = 1; y <= cells_[1]; ++y) visit_row(z * stride_[2] + y * stride_[1], {0, y, z});
-    } else {
-        for (std::int64_t y = 1; y <= cells_[1]; ++y) visit_row(y * stride_[1], {0, y});
+        sink.emit(static_cast<Index>(p), hits.data(), hits.data() + used);
     }
 }
 
-// A grid box b overlapping oversized box o has b.min >= o.min - b's extent >= o.min - the largest
-// extent, and b.min <= o.max: its lower corner lies in that window's cells.
 template <int Dim>
-void UniformGrid<Dim>::oversized_against_cells(std::vector<Pair>& pairs) const {
+void UniformGrid<Dim>::find_overlapping(const BenchBox<Dim>& box, std::vector<Index>& positions) const {
+    if (order_.empty()) return;
+    const grid_lanes::Columns<Dim> columns = this->columns();
+    const auto query = grid_lanes::splat<4, Dim>(box.min, box.max);
+    std::array<Index, Dim> low, high;
+    for (int k = 0; k < Dim; ++k) {
+        low[k] = cell_of(box.min[k] - largest_extent_[k], k);
+        high[k] = cell_of(box.max[k], k);
+    }
+    std::size_t used = positions.size();
+    positions.resize(used + 4);
     const Index* begin = cell_begin_.data();
-    for (std::size_t o = 0; o < oversized_boxes_.size(); ++o) {
-        const BenchBox<Dim>& box = oversized_boxes_[o];
-        const Query query = query_of(box.min, box.max);
-        std::array<std::int64_t, Dim> from{}, to{};
-        for (int k = 0; k < Dim; ++k) {
-            from[k] = cell_coordinate(static_cast<double>(box.min[k]) - largest_extent_[k], k) + 1;
-            to[k] = cell_coordinate(box.max[k], k) + 1;
-        }
-        auto test_row = [&](std::int64_t row_start) {
-            for (Index j = begin[row_start + from[0]]; j < begin[row_start + to[0] + 1]; ++j)
-                if (overlap(query, records_[j])) pairs.push_back(ordered_pair(oversized_ids_[o], records_[j].id));
-        };
-        if constexpr (Dim == 3) {
-            for (std::int64_t z = from[2]; z <= to[2]; ++z)
-                for (std::int64_t y = from[1]; y <= to[1]; ++y) test_row(z * stride_[2] + y * stride_[1]);
-        } else {
-            for (std::int64_t y = from[1]; y <= to[1]; ++y) test_row(y * stride_[1]);
+    const Index z_low = Dim == 3 ? low[Dim - 1] : 0, z_high = Dim == 3 ? high[Dim - 1] : 0;
+    for (Index z = z_low; z <= z_high; ++z) {
+        for (Index y = low[1]; y <= high[1]; ++y) {
+            const std::size_t row = (Dim == 3 ? z * cells_[1] : 0) * cells_[0] + y * cells_[0];
+            used = append_hits<4, Dim>(columns, query, begin[row + low[0]], begin[row + high[0] + 1], positions, used);
         }
     }
+    used = append_hits<4, Dim>(columns, query, static_cast<Index>(grid_count_), static_cast<Index>(order_.size()),
+                               positions, used);
+    positions.resize(used);
 }
 
 template class UniformGrid<2>;

@@ -1,41 +1,41 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The uniform grid of the comparison, rebuilt from scratch on every call and written to be as fast
-// as a single-threaded grid gets on boxes of similar size:
+// The uniform grid of the comparison, rebuilt from scratch on every call and written to be as
+// fast as a grid gets on boxes of similar size:
 //
-// - Cell side = the largest box extent on that axis (a hair more), so two overlapping boxes have
-//   their lower corners in the same or in neighbouring cells. Each box is stored once, in the cell
-//   of its lower corner, and a cell is tested against itself and against its 13 (3D) or 4 (2D)
-//   neighbours of the "upper half", so every candidate pair is tested exactly once and no pair
-//   needs deduplication.
-// - The cells form a dense array (no hashing), padded by one empty cell on every side so that
-//   neighbour lookups need no bounds checks. A counting sort places the boxes, copied with their
-//   ids into 32-byte (3D) records, in cell order: cells along x are adjacent in memory, so each
-//   neighbour row (x-1, x, x+1) is one contiguous range, and a cell plus its x+1 neighbour too.
-// - A box skips the upper neighbours its upper corner does not reach (about 40% of the tests),
-//   and tests a record with one SSE comparison (records hold min and -max).
+// - Each box is stored once, in the cell of its lower corner. The cells are anisotropic: along x
+//   a quarter of the largest x extent, along the other axes twice the largest extent there. The
+//   cells of one x-row are adjacent in memory, so any run of cells of a row is one contiguous
+//   range of boxes, and the thin x cells make that range tight around the box.
+// - A counting sort orders the boxes by cell; a gather, prefetching both cache lines a caller's
+//   box may straddle, copies them into separate arrays of lower and upper coordinates (and ids)
+//   in that order, so that a vector compare tests 8 candidates at once (4 without AVX2)
+//   (peers/grid_lanes.hpp, AVX2 where the processor has it), the hits packed without a branch.
+// - A box tests the rest of its own row up to the cell of its upper corner, and the later rows
+//   (in row order) its window reaches: rows whose lower corners could overlap it, lower corners
+//   in [min - largest extent, max] on each axis. Every pair is tested once, from the box whose
+//   row comes first, or from the earlier box of a shared row.
 // - Boxes far larger than the rest ("oversized": an extent above twice the 95th percentile of a
-//   sample) would inflate every cell; they stay out of the grid, each is tested against the
-//   cells its lower-corner window covers, and they are paired among themselves by a nested grid.
+//   sample) would inflate every cell; they stay out of the cells, each is tested against the rows
+//   its window covers, and they are paired among themselves by a nested grid.
+// - With two threads, each tests half the boxes and gathers half the arrays.
 // - Every buffer is kept between calls.
 //
-// Exactness: the cell coordinate floor((v - low) / side), computed in double, is monotone in v,
-// and the side exceeds the largest extent by a relative 1e-6, far above the rounding error, so
-// the lower corners of two overlapping boxes lie at most one cell apart on every axis.
+// Exactness rests on monotonicity alone, whatever the cell sides: the cell of a coordinate,
+// min(max((v - low) * inverse side, 0), cells - 1) in float and then truncated, never decreases
+// as v grows, since each rounded operation is monotone. A box b overlapping a has
+// b.min <= a.max, so its cell is at most a.max's; and b.min >= a.min - extent(b) >= a.min - E,
+// where E, the largest extent, is rounded up to a float, so fl(a.min - E) <= b.min (b.min is a
+// float) and its cell is at most b.min's. The window is therefore never too small; the cell
+// counts per axis stay below 2^20, exact in float.
 
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
+#include "peers/grid_lanes.hpp"
 #include "scenes/scene.hpp"
 #include "smb/pair.hpp"
 
@@ -44,121 +44,111 @@ namespace smb::bench {
 template <int Dim>
 class UniformGrid {
 public:
-    /// Appends every overlapping pair of `boxes` (box i under ids[i]) to `pairs`, each once.
+    /// Cell sides as multiples of the largest extent on their axis.
+    struct Shape {
+        double x_side = 0.25;
+        double other_sides = 2.0;
+        double cells_per_box = 2.0;  ///< at most; sparse scenes get larger cells
+    };
+    /// Two boxes at these positions of the grid's order (see order()).
+    struct PositionPair {
+        std::uint32_t a = 0;
+        std::uint32_t b = 0;
+    };
+
+    explicit UniformGrid(Shape shape = {}, int threads = 1);
+
+    /// Appends every overlapping pair of `boxes` (box i under ids[i]) to `pairs`, each once, a < b.
     void find_pairs(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids, std::vector<Pair>& pairs);
 
+    /// The same as positions in order(): every overlapping pair once, in any order within it.
+    void find_position_pairs(std::span<const BenchBox<Dim>> boxes, std::vector<PositionPair>& pairs);
+    /// The input index of the box at each position of the last call: cell order, then the
+    /// oversized boxes.
+    [[nodiscard]] std::span<const std::uint32_t> order() const noexcept { return order_; }
+    /// Appends to `positions` the position of every box of the last call that overlaps `box`.
+    void find_overlapping(const BenchBox<Dim>& box, std::vector<std::uint32_t>& positions) const;
+
     [[nodiscard]] std::size_t cell_count() const noexcept { return cell_total_; }
-    [[nodiscard]] double cell_side(int axis) const noexcept { return 1 / inverse_side_[axis]; }
-    [[nodiscard]] std::size_t oversized_count() const noexcept { return oversized_ids_.size(); }
+    [[nodiscard]] double cell_side(int axis) const noexcept { return 1 / static_cast<double>(inverse_side_[axis]); }
+    [[nodiscard]] std::size_t oversized_count() const noexcept { return order_.size() - grid_count_; }
+    [[nodiscard]] std::size_t lanes() const noexcept { return lanes_; }
 
 private:
-    /// A box in cell order: what the pair tests read, in one record. The upper corner is stored
-    /// negated, so that the closed overlap test is one "lower or equal" on all 2 * Dim lanes:
-    /// b.min <= a.max and -b.max <= -a.min (negation is exact).
-    struct Record {
-        std::array<float, 2 * Dim> lanes;  ///< min, then -max
-        BoxId id;
-    };
-    /// What a box tests records against: its max, then -min.
-    struct Query {
-        std::array<float, 2 * Dim> lanes;
-    };
     using Index = std::uint32_t;
-    static constexpr Index not_in_grid = std::numeric_limits<Index>::max();
+    static constexpr std::size_t padding = 16;  ///< floats readable past the last box
 
-    void brute_force(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids, std::vector<Pair>& pairs) const;
+    /// Where one thread's hits go: by ids (find_pairs) or by positions (find_position_pairs).
+    struct IdSink;
+    struct PositionSink;
+
+    void arrange(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids);
     void choose_oversize_limits(std::span<const BenchBox<Dim>> boxes);
-    void measure(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids);
+    void measure(std::span<const BenchBox<Dim>> boxes);
     void lay_out(std::size_t box_count);
-    void sort_into_cells(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids);
-    void pairs_in_cells(std::vector<Pair>& pairs) const;
-    void oversized_against_cells(std::vector<Pair>& pairs) const;
+    void sort_into_cells(std::span<const BenchBox<Dim>> boxes);
+    void gather(std::span<const BenchBox<Dim>> boxes, std::span<const BoxId> ids, std::size_t from, std::size_t to);
+    template <class Sink>
+    void scan(Sink& sink, std::size_t from, std::size_t to, std::vector<Index>& hits) const;
+    template <std::size_t Lanes, class Sink>
+    void scan_in_lanes(Sink& sink, std::size_t from, std::size_t to, std::vector<Index>& hits) const;
+    template <class Sink>
+    [[gnu::target("avx2,popcnt")]] void scan_avx2(Sink& sink, std::size_t from, std::size_t to,
+                                                  std::vector<Index>& hits) const;
+    template <class Sink>
+    void run_threads(std::array<Sink, 2>& sinks);
 
     [[nodiscard]] bool is_oversized(const BenchBox<Dim>& box) const noexcept {
         bool oversized = false;
         for (int k = 0; k < Dim; ++k) oversized |= box.max[k] - box.min[k] > oversize_limit_[k];
         return oversized;
     }
-    /// Clamped into the grid; monotone in `value`.
-    [[nodiscard]] std::int64_t cell_coordinate(double value, int axis) const noexcept {
-        const double raw = std::floor((value - low_[axis]) * inverse_side_[axis]);
-        return static_cast<std::int64_t>(std::clamp(raw, 0.0, static_cast<double>(cells_[axis] - 1)));
+    /// The cell coordinate of `value` on `axis`, clamped into the grid; monotone in `value`.
+    [[nodiscard]] Index cell_of(float value, int axis) const noexcept {
+        const float raw = (value - low_[axis]) * inverse_side_[axis];
+        return static_cast<Index>(std::min(std::max(raw, 0.0f), last_cell_[axis]));
     }
-    /// The same for a value no lower than the grid's lowest lower corner, such as any coordinate
-    /// of a box in the grid: truncation is the floor there, and far cheaper.
-    [[nodiscard]] std::int64_t lower_corner_coordinate(float value, int axis) const noexcept {
-        const auto raw = static_cast<std::int64_t>((static_cast<double>(value) - low_[axis]) * inverse_side_[axis]);
-        return std::min(raw, cells_[axis] - 1);
+    [[nodiscard]] std::size_t flat_cell(const std::array<float, Dim>& corner) const noexcept {
+        std::size_t flat = 0;
+        for (int k = Dim - 1; k >= 0; --k) flat = flat * cells_[k] + cell_of(corner[k], k);
+        return flat;
     }
-    /// Flat index in the padded array of the cell holding the lower corner of a box in the grid.
-    [[nodiscard]] Index flat_cell(const std::array<float, Dim>& corner) const noexcept {
-        std::int64_t index = 0;
-        for (int k = 0; k < Dim; ++k) index += (lower_corner_coordinate(corner[k], k) + 1) * stride_[k];
-        return static_cast<Index>(index);
+    [[nodiscard]] grid_lanes::Columns<Dim> columns() const noexcept {
+        grid_lanes::Columns<Dim> columns;
+        for (int k = 0; k < Dim; ++k) {
+            columns.min[k] = min_[k].data();
+            columns.max[k] = max_[k].data();
+        }
+        return columns;
     }
 
-    static Query query_of(const std::array<float, Dim>& min, const std::array<float, Dim>& max) noexcept {
-        Query query;
-        for (int k = 0; k < Dim; ++k) {
-            query.lanes[k] = max[k];
-            query.lanes[Dim + k] = -min[k];
-        }
-        return query;
-    }
-    static Query query_of(const Record& record) noexcept {
-        Query query;
-        for (int k = 0; k < Dim; ++k) {
-            query.lanes[k] = -record.lanes[Dim + k];
-            query.lanes[Dim + k] = -record.lanes[k];
-        }
-        return query;
-    }
-    static Record record_of(const BenchBox<Dim>& box, BoxId id) noexcept {
-        Record record;
-        for (int k = 0; k < Dim; ++k) {
-            record.lanes[k] = box.min[k];
-            record.lanes[Dim + k] = -box.max[k];
-        }
-        record.id = id;
-        return record;
-    }
-
-    static bool overlap(const Query& query, const Record& record) noexcept {
-#if defined(__SSE2__)
-        if constexpr (Dim == 3) {
-            const __m128 low = _mm_cmple_ps(_mm_loadu_ps(record.lanes.data()), _mm_loadu_ps(query.lanes.data()));
-            // The last two lanes: 64-bit loads (__m128i may alias anything).
-            const __m128 high =
-                _mm_cmple_ps(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&record.lanes[4]))),
-                             _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&query.lanes[4]))));
-            return ((_mm_movemask_ps(low) | (_mm_movemask_ps(high) << 4)) & 0x3F) == 0x3F;
-        } else {
-            return _mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(record.lanes.data()), _mm_loadu_ps(query.lanes.data()))) ==
-                   0xF;
-        }
-#else
-        bool result = true;
-        for (int k = 0; k < 2 * Dim; ++k) result &= record.lanes[k] <= query.lanes[k];
-        return result;
-#endif
-    }
-
+    Shape shape_;
+    int threads_ = 1;
+    std::size_t lanes_ = 4;
     std::array<float, Dim> oversize_limit_{};
-    std::array<double, Dim> low_{};
-    std::array<double, Dim> high_{};
-    std::array<double, Dim> largest_extent_{};  ///< of the boxes in the grid
-    std::array<double, Dim> inverse_side_{};
-    std::array<std::int64_t, Dim> cells_{};   ///< per axis, without the padding
-    std::array<std::int64_t, Dim> stride_{};  ///< of the padded array
-    std::size_t cell_total_ = 0;              ///< padded
+    std::array<float, Dim> low_{};
+    std::array<double, Dim> range_{};          ///< of the lower corners in the cells
+    std::array<float, Dim> largest_extent_{};  ///< of the boxes in the cells, rounded up
+    std::array<float, Dim> inverse_side_{};
+    std::array<float, Dim> last_cell_{};
+    std::array<std::size_t, Dim> cells_{};
+    std::size_t cell_total_ = 0;
+    std::size_t grid_count_ = 0;  ///< boxes in the cells; the oversized follow them in order_
 
     std::vector<float> sample_;
     std::vector<Index> cell_of_box_;
-    std::vector<Index> cell_begin_;  ///< cell c holds records [cell_begin_[c], cell_begin_[c + 1])
-    std::vector<Record> records_;
+    std::vector<Index> cell_begin_;  ///< cell c holds positions [cell_begin_[c], cell_begin_[c + 1])
+    std::vector<Index> order_;
+    std::array<std::vector<float>, Dim> min_;
+    std::array<std::vector<float>, Dim> max_;
+    std::vector<BoxId> ids_;  ///< in order, for find_pairs
     std::vector<BenchBox<Dim>> oversized_boxes_;
     std::vector<BoxId> oversized_ids_;
+    std::vector<PositionPair> oversized_pairs_;
     std::unique_ptr<UniformGrid> oversized_grid_;
+    std::array<std::vector<Index>, 2> hits_;
+    std::vector<Pair> second_thread_pairs_;
+    std::vector<PositionPair> second_thread_position_pairs_;
 };
 
 }  // namespace smb::bench

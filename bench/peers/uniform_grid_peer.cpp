@@ -11,10 +11,12 @@ namespace {
 template <int Dim>
 class UniformGridPeer final : public StatelessPeer<Dim> {
 public:
+    explicit UniformGridPeer(int threads) : grid_({}, threads) {}
+
     [[nodiscard]] std::string details_json() const override {
         std::ostringstream json;
         json << "\"grid_cells\":" << grid_.cell_count() << ",\"grid_cell_side\":" << grid_.cell_side(0)
-             << ",\"grid_oversized\":" << grid_.oversized_count();
+             << ",\"grid_oversized\":" << grid_.oversized_count() << ",\"grid_lanes\":" << grid_.lanes();
         return json.str();
     }
 
@@ -31,11 +33,11 @@ private:
 }  // namespace
 
 template <int Dim>
-std::unique_ptr<Peer<Dim>> make_uniform_grid_peer() {
-    return std::make_unique<UniformGridPeer<Dim>>();
+std::unique_ptr<Peer<Dim>> make_uniform_grid_peer(int threads) {
+    return std::make_unique<UniformGridPeer<Dim>>(threads);
 }
 
-template std::unique_ptr<Peer<2>> make_uniform_grid_peer<2>();
-template std::unique_ptr<Peer<3>> make_uniform_grid_peer<3>();
+template std::unique_ptr<Peer<2>> make_uniform_grid_peer<2>(int);
+template std::unique_ptr<Peer<3>> make_uniform_grid_peer<3>(int);
 
 }  // namespace smb::bench

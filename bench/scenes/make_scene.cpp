@@ -3,7 +3,11 @@
 #include <stdexcept>
 
 #include "scenes/clustered.hpp"
+#include "scenes/islands.hpp"
+#include "scenes/log_uniform_sizes.hpp"
 #include "scenes/mixed_sizes.hpp"
+#include "scenes/plane.hpp"
+#include "scenes/rods.hpp"
 #include "scenes/scene.hpp"
 #if SMB_BENCH_HAVE_WORKLOAD
 #include "scenes/paper_environment.hpp"
@@ -22,6 +26,11 @@ std::unique_ptr<Scene<Dim>> make_scene(const SceneSpec& spec) {
     if (spec.dimension != Dim) throw std::invalid_argument("scene dimension does not match");
     if (spec.family == "clustered") return make_clustered_scene<Dim>(spec);
     if (spec.family == "mixed") return make_mixed_sizes_scene<Dim>(spec);
+    if (spec.family == "loguniform2") return make_log_uniform_sizes_scene<Dim>(spec, 2);
+    if (spec.family == "loguniform3") return make_log_uniform_sizes_scene<Dim>(spec, 3);
+    if (spec.family == "islands") return make_islands_scene<Dim>(spec);
+    if (spec.family == "plane") return make_plane_scene<Dim>(spec);
+    if (spec.family == "rods") return make_rods_scene<Dim>(spec);
 #if SMB_BENCH_HAVE_WORKLOAD
     if (spec.family == "paper") return make_paper_scene<Dim>(spec);
     if constexpr (Dim == 3) {

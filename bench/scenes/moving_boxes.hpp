@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The motion rules of the paper's Section 4 applied to any initial placement, for the scenes the
-// paper has no generator for (clustered, mixed sizes). Per step, with λ, λ_i uniform in (-Λ, Λ):
-// the count changes by round(λ N) (random deletions, or new boxes placed as at step 0), every
-// side l' = l + λ_i b and every centre c' = c + λ_i x. Sides reflect into the box's own size
-// range and centres into the cube, as smb::workload does for the paper's environment, so the
-// only difference between scenes is where the boxes start and how large they are.
+// paper has no generator for (clustered, mixed sizes, ...). Per step, with λ, λ_i uniform in
+// (-Λ, Λ): the count changes by round(λ N) (random deletions, or new boxes placed as at step 0),
+// every side l' = l + λ_i b and every centre c' = c + λ_i x (x: the domain's side on that axis).
+// Sides reflect into the box's own size range and centres into the domain (a cube unless the
+// family says otherwise), as smb::workload does for the paper's environment, so the only
+// difference between scenes is where the boxes start and how large they are.
 
 #include <algorithm>
 #include <array>
@@ -19,13 +20,21 @@
 
 namespace smb::bench {
 
-/// A box as a placement draws it: centre, sides, and the range its sides stay in.
+/// A box as a placement draws it: centre, sides, and the range its sides stay in: side k in
+/// [side_min, side_max] times stretch[k].
 template <int Dim>
 struct PlacedBox {
     std::array<double, Dim> centre{};
     std::array<double, Dim> sides{};
     double side_min = 0;
     double side_max = 1;
+    std::array<double, Dim> stretch = filled(1.0);
+
+    static constexpr std::array<double, Dim> filled(double value) {
+        std::array<double, Dim> values{};
+        values.fill(value);
+        return values;
+    }
 };
 
 template <int Dim>
@@ -36,8 +45,14 @@ public:
     /// `largest_side` is the paper's b: the scale of the per-step side change.
     MovingBoxes(std::size_t count, double cube_side, double largest_side, double update_factor, std::uint64_t seed,
                 Placement place)
+        : MovingBoxes(count, PlacedBox<Dim>::filled(cube_side), largest_side, update_factor, seed, std::move(place)) {}
+
+    /// The same in a box of sides `domain` instead of a cube: centres move by λ_i times the side
+    /// of their axis.
+    MovingBoxes(std::size_t count, const std::array<double, Dim>& domain, double largest_side, double update_factor,
+                std::uint64_t seed, Placement place)
         : count_(count),
-          cube_side_(cube_side),
+          domain_(domain),
           largest_side_(largest_side),
           update_factor_(update_factor),
           rng_(seed),
@@ -70,7 +85,7 @@ private:
     void append_new(std::size_t count) {
         for (std::size_t i = 0; i < count; ++i) {
             PlacedBox<Dim> placed = place_(rng_);
-            for (int k = 0; k < Dim; ++k) placed.centre[k] = keep_inside(placed.centre[k], placed.sides[k]);
+            for (int k = 0; k < Dim; ++k) placed.centre[k] = keep_inside(placed.centre[k], placed.sides[k], k);
             ids_.push_back(next_id_++);
             placed_.push_back(placed);
         }
@@ -105,17 +120,18 @@ private:
     void move_all(std::uniform_real_distribution<double>& fraction) {
         for (PlacedBox<Dim>& box : placed_) {
             for (int k = 0; k < Dim; ++k) {
-                box.sides[k] = reflect(box.sides[k] + fraction(rng_) * largest_side_, box.side_min, box.side_max);
+                box.sides[k] = reflect(box.sides[k] + fraction(rng_) * largest_side_, box.side_min * box.stretch[k],
+                                       box.side_max * box.stretch[k]);
             }
             for (int k = 0; k < Dim; ++k) {
-                box.centre[k] = keep_inside(box.centre[k] + fraction(rng_) * cube_side_, box.sides[k]);
+                box.centre[k] = keep_inside(box.centre[k] + fraction(rng_) * domain_[k], box.sides[k], k);
             }
         }
     }
 
-    [[nodiscard]] double keep_inside(double centre, double side) const {
+    [[nodiscard]] double keep_inside(double centre, double side, int axis) const {
         const double half = 0.5 * side;
-        return reflect(centre, half, std::max(half, cube_side_ - half));
+        return reflect(centre, half, std::max(half, domain_[axis] - half));
     }
 
     static double reflect(double value, double low, double high) {
@@ -136,7 +152,7 @@ private:
     }
 
     std::size_t count_;
-    double cube_side_;
+    std::array<double, Dim> domain_;
     double largest_side_;
     double update_factor_;
     std::mt19937_64 rng_;

@@ -42,7 +42,9 @@ public:
 };
 
 /// What to generate. `family` is one of: paper (the paper's Section 4.1 environment), sparse
-/// (its Table 2 setting, 3D), clustered, mixed (a mix of sizes with a few very large boxes).
+/// (its Table 2 setting, 3D), clustered, mixed (a mix of sizes with a few very large boxes),
+/// loguniform2 and loguniform3 (sizes log-uniform over two or three decades), islands (dense
+/// clusters in empty space), plane (boxes on a plane), rods (one side 10–50 times the others).
 struct SceneSpec {
     std::string family = "paper";
     int dimension = 3;
