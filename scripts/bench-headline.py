@@ -1,21 +1,28 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
-"""The headline comparison: smb against the best uniform grid and the established broad phases
-on the paper's workload, one process per method and scene (smb_compare), in one command.
+"""The headline comparison: smb against the best uniform grid, the grid's Verlet-skin and
+two-thread forms and the established broad phases, on the paper's workload and on the other scene
+families, one process per method and scene (smb_compare), in one command.
 
 Scenes and methods (40 steps after the build, one thread unless named):
-    3D paper, 1M boxes, Λ = 1e-3: grid, World (float, double), Detector, World and Detector on 2 threads
+    3D paper, 1M boxes, Λ = 1e-3: grid (1 and 2 threads), World (float, double), Detector, World and
+                                  Detector on 2 threads
     3D paper, 1M boxes, Λ = 0.1:  grid, World (float, double), Detector
-    3D paper, 1M boxes, Λ = 1e-5: grid, Detector with skin 0.1, Bullet's DBVT
+    3D paper, 1M boxes, Λ = 1e-5: grid, Verlet-skin grid, Detector with skin 0.1, Bullet's DBVT
     2D paper, 100k boxes, Λ = 1e-3: grid, World, Detector
-    2D paper, 100k boxes, Λ = 1e-5: grid, Box2D's dynamic tree, World, Detector with skin 0.1
+    2D paper, 100k boxes, Λ = 1e-5: grid, Verlet-skin grid, Box2D's dynamic tree, World, Detector
+                                    with skin 0.1
+    3D, 300k boxes, Λ = 1e-3: mixed, clustered, sparse, loguniform2, loguniform3, islands, plane,
+                              rods: grid, World, Detector
+    2D, 100k boxes, Λ = 1e-3: mixed, clustered, loguniform2, islands, rods: grid, World, Detector
 Every step's pair set must agree between the methods of a scene (per-step digests).
 
 Writes bench/results/<machine>/<name>.csv, .jsonl (smb_compare's lines) and .md: for each
 method the build step, the median of the ten steps after it, the median of the later (steady)
 steps, and each as a ratio grid ÷ method (above 1: faster than the grid).
 Usage: scripts/bench-headline.py --build-dir build-bench [--name headline] [--steps 40]
-       [--boxes-3d 1000000] [--boxes-2d 100000] [--rounds 1] [--only METHOD,...] [--extra METHOD,...]
+       [--boxes-3d 1000000] [--boxes-2d 100000] [--boxes-family 300000] [--rounds 1]
+       [--only METHOD,...] [--extra METHOD,...] [--families paper,mixed,...]
 """
 
 import argparse
@@ -28,29 +35,36 @@ import subprocess
 import sys
 import time
 
-# (dim, Λ, methods); the first method of each scene is the one the ratios divide.
+# (family, dim, Λ, size, methods); the first method of each scene is the one the ratios divide.
+# size: "paper" scenes take --boxes-3d or --boxes-2d, "family" ones --boxes-family in 3D and
+# --boxes-2d in 2D.
+ONE_THREAD = ["uniform_grid", "smb", "smb_detector"]
 SCENES = [
-    (3, 1e-3, ["uniform_grid", "smb", "smb_double", "smb_detector", "smb_2threads", "smb_detector_2threads"]),
-    (3, 1e-1, ["uniform_grid", "smb", "smb_double", "smb_detector"]),
-    (3, 1e-5, ["uniform_grid", "smb_detector_skin", "bullet_dbvt"]),
-    (2, 1e-3, ["uniform_grid", "smb", "smb_detector"]),
-    (2, 1e-5, ["uniform_grid", "box2d_dynamic_tree", "smb", "smb_detector_skin"]),
-]
+    ("paper", 3, 1e-3, "paper", ["uniform_grid", "uniform_grid_2threads", "smb", "smb_double", "smb_detector",
+                                 "smb_2threads", "smb_detector_2threads"]),
+    ("paper", 3, 1e-1, "paper", ["uniform_grid", "smb", "smb_double", "smb_detector"]),
+    ("paper", 3, 1e-5, "paper", ["uniform_grid", "verlet_grid", "smb_detector_skin", "bullet_dbvt"]),
+    ("paper", 2, 1e-3, "paper", ONE_THREAD),
+    ("paper", 2, 1e-5, "paper", ["uniform_grid", "verlet_grid", "box2d_dynamic_tree", "smb", "smb_detector_skin"]),
+] + [(family, 3, 1e-3, "family", ONE_THREAD)
+     for family in ["mixed", "clustered", "sparse", "loguniform2", "loguniform3", "islands", "plane", "rods"]] + [
+    (family, 2, 1e-3, "family", ONE_THREAD) for family in ["mixed", "clustered", "loguniform2", "islands", "rods"]]
 REFERENCE = "uniform_grid"
-LABEL = {"uniform_grid": "uniform grid", "smb": "smb World float", "smb_double": "smb World double",
+LABEL = {"uniform_grid": "uniform grid", "uniform_grid_2threads": "uniform grid, 2 threads",
+         "verlet_grid": "Verlet-skin grid", "smb": "smb World float", "smb_double": "smb World double",
          "smb_detector": "smb Detector", "smb_2threads": "smb World, 2 threads",
          "smb_detector_2threads": "smb Detector, 2 threads", "smb_detector_skin": "smb Detector, skin 0.1",
          "bullet_dbvt": "Bullet btDbvtBroadphase", "box2d_dynamic_tree": "Box2D b2DynamicTree",
          "uniform_grid_every_cell": "textbook grid (every cell)"}
 TIMES = ["first_step_s", "early_median_s", "steady_median_s", "median_step_s", "first_step_cpu_s", "early_median_cpu_s",
          "steady_median_cpu_s", "wall_s"]
-FIELDS = ["dim", "lambda", "boxes", "steps", "method", "first_step_ms", "early_median_ms", "steady_median_ms",
+FIELDS = ["family", "dim", "lambda", "boxes", "steps", "method", "first_step_ms", "early_median_ms", "steady_median_ms",
           "median_step_ms", "first_step_cpu_ms", "early_median_cpu_ms", "steady_median_cpu_ms", "grid_over_first", "grid_over_early", "grid_over_steady", "pairs_last", "agrees",
           "bytes_per_box", "wall_s"]
 
 
-def run_one(binary, method, dim, boxes, update_factor, steps, early_steps):
-    command = [binary, "--method", method, "--scene", "paper", "--dim", str(dim), "--boxes", str(boxes),
+def run_one(binary, method, family, dim, boxes, update_factor, steps, early_steps):
+    command = [binary, "--method", method, "--scene", family, "--dim", str(dim), "--boxes", str(boxes),
                "--lambda", repr(update_factor), "--steps", str(steps), "--early-steps", str(early_steps),
                "--no-check"]
     started = time.monotonic()
@@ -93,16 +107,17 @@ def markdown(rows, header_lines):
     out = header_lines + [""]
     scenes = []
     for row in rows:
-        key = (row["dim"], row["lambda"], row["boxes"])
+        key = (row["family"], row["dim"], row["lambda"], row["boxes"])
         if key not in scenes:
             scenes.append(key)
-    for dim, update_factor, boxes in scenes:
-        out += [f"### {dim}D paper workload, N = {boxes:,}, Λ = {update_factor:g}", "",
+    for family, dim, update_factor, boxes in scenes:
+        title = "paper workload" if family == "paper" else f"`{family}`"
+        out += [f"### {dim}D {title}, N = {boxes:,}, Λ = {update_factor:g}", "",
                 "| method | build ms | steps 1–10 ms | steady ms | grid ÷ method: build | steps 1–10 | steady "
                 "| steady CPU ms | pairs | agrees |",
                 "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
         for row in rows:
-            if (row["dim"], row["lambda"], row["boxes"]) != (dim, update_factor, boxes):
+            if (row["family"], row["dim"], row["lambda"], row["boxes"]) != (family, dim, update_factor, boxes):
                 continue
             if row.get("status") == "failed":
                 out.append(f"| {LABEL.get(row['method'], row['method'])} | failed: {row['agrees']} ||||||||")
@@ -127,6 +142,8 @@ def main():
     parser.add_argument("--early-steps", type=int, default=10, help="steps after the build counted as early")
     parser.add_argument("--boxes-3d", type=int, default=1_000_000)
     parser.add_argument("--boxes-2d", type=int, default=100_000)
+    parser.add_argument("--boxes-family", type=int, default=300_000, help="boxes of the 3D scenes other than paper")
+    parser.add_argument("--families", default="", help="comma-separated scene families to run (default: all)")
     parser.add_argument("--rounds", type=int, default=1,
                         help="runs of every method, alternating; the tables show the median (default 1)")
     parser.add_argument("--only", default="", help="comma-separated methods to run (the grid always runs)")
@@ -145,14 +162,21 @@ def main():
 
     started, load_before = time.monotonic(), load_average()
     rows, raw_lines, problems = [], [], []
-    for dim, update_factor, methods in SCENES:
-        boxes = args.boxes_3d if dim == 3 else args.boxes_2d
+    families = set(args.families.split(",")) if args.families else None
+    for family, dim, update_factor, size, methods in SCENES:
+        if families is not None and family not in families:
+            continue
+        if dim == 2:
+            boxes = args.boxes_2d
+        else:
+            boxes = args.boxes_3d if size == "paper" else args.boxes_family
+        where = f"{family} {dim}D Λ={update_factor:g}"
         chosen = []
         for method in methods + [m for m in extra if m not in methods]:
             if only is not None and method not in only and method not in extra:
                 continue
             if f"{dim}d" not in available.get(method, ""):
-                print(f"[{dim}D Λ={update_factor:g}] {method} is not in this build, left out", flush=True)
+                print(f"[{where}] {method} is not in this build, left out", flush=True)
                 continue
             chosen.append(method)
         runs, failed = {m: [] for m in chosen}, set()
@@ -161,14 +185,14 @@ def main():
             for method in chosen:
                 if method in failed:
                     continue
-                result, why = run_one(binary, method, dim, boxes, update_factor, args.steps, args.early_steps)
+                result, why = run_one(binary, method, family, dim, boxes, update_factor, args.steps, args.early_steps)
                 if result is None:
                     failed.add(method)
-                    problems.append(f"{dim}D Λ={update_factor:g} {method}: {why}")
-                    rows.append({"dim": dim, "lambda": update_factor, "boxes": boxes, "steps": args.steps,
+                    problems.append(f"{where} {method}: {why}")
+                    rows.append({"family": family, "dim": dim, "lambda": update_factor, "boxes": boxes, "steps": args.steps,
                                  "method": method, "status": "failed", "agrees": why})
                     continue
-                print(f"[{dim}D N={boxes} Λ={update_factor:g}] {method}: build "
+                print(f"[{where} N={boxes}] {method}: build "
                       f"{result['first_step_s'] * 1e3:.1f} ms, steps 1-{result['early_steps']} "
                       f"{result['early_median_s'] * 1e3:.1f} ms, steady {result['steady_median_s'] * 1e3:.1f} ms "
                       f"({result['wall_s']:.0f} s)", flush=True)
@@ -179,15 +203,15 @@ def main():
         for r in results:
             bad = [s for s, (a, b) in enumerate(zip(r["digests"], reference["digests"])) if a != b]
             if r["digests_differ"]:
-                problems.append(f"{dim}D Λ={update_factor:g}: {r['method']} reported different pairs in two rounds")
+                problems.append(f"{where}: {r['method']} reported different pairs in two rounds")
             if bad:
-                problems.append(f"{dim}D Λ={update_factor:g}: {r['method']} differs from {reference['method']} "
+                problems.append(f"{where}: {r['method']} differs from {reference['method']} "
                                 f"at steps {bad}")
             ms = {k: r[k] * 1e3 for k in ("first_step_s", "early_median_s", "steady_median_s", "median_step_s")}
             base = {k: reference[k] * 1e3 for k in ms}
             steady = ms["steady_median_s"] if r["steady_median_s"] > 0 else ""
             rows.append({
-                "dim": dim, "lambda": update_factor, "boxes": boxes, "steps": args.steps, "method": r["method"],
+                "family": family, "dim": dim, "lambda": update_factor, "boxes": boxes, "steps": args.steps, "method": r["method"],
                 "first_step_ms": ms["first_step_s"], "early_median_ms": ms["early_median_s"],
                 "steady_median_ms": steady, "median_step_ms": ms["median_step_s"],
                 "grid_over_first": ratio(base["first_step_s"], ms["first_step_s"]),
@@ -204,7 +228,8 @@ def main():
               f"smb_compare at {describe_checkout(root)}, {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC, "
               f"{os.cpu_count()} cores; load average {load_before} before, {load_average()} after; "
               f"{elapsed / 60:.1f} minutes in all; {args.rounds} round(s), medians over them.",
-              f"Paper workload (E = 0.4, H = 2.5), {args.steps} steps after the build; times are wall-clock ms "
+              f"Paper workload (E = 0.4, H = 2.5) and the other families of `smb_compare --help`, {args.steps} "
+              f"steps after the build; times are wall-clock ms "
               f"of the method's calls; steps 1–{args.early_steps} are the first after the build, steady = "
               f"the median of the later ones. Ratios: grid time ÷ method time (above 1: faster than the grid). "
               f"CPU ms: CPU time of the process, all its threads.",

@@ -1,10 +1,11 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
 # Builds smb_compare in release mode and runs the headline comparison (scripts/bench-headline.py):
-# the paper's workload at 1M boxes in 3D and 100k in 2D, smb against the uniform grid, Bullet's
-# DBVT and Box2D's tree, 40 steps, the build step and the steady state apart.
+# the paper's workload at 1M boxes in 3D and 100k in 2D, and the other scene families at 300k in
+# 3D and 100k in 2D, smb against the uniform grid (one and two threads), the Verlet-skin grid,
+# Bullet's DBVT and Box2D's tree, 40 steps, the build step and the steady state apart.
 #   scripts/bench-headline.sh [name] [build-dir] [more options of bench-headline.py]
-# Results: bench/results/cpp-2core/<name>.csv, .jsonl and .md. About 10 minutes on 2 idle cores.
+# Results: bench/results/cpp-2core/<name>.csv, .jsonl and .md. About 25 minutes on 2 idle cores.
 set -eu
 name="${1:-headline}"
 build_dir="${2:-build-bench}"
