@@ -37,8 +37,8 @@ int check(const Case& one, double update_factor, std::size_t steps) {
     } catch (const std::invalid_argument&) {
         return 0;  // a family this build or this dimension lacks
     }
-    const std::vector<std::string> names = {"uniform_grid", "uniform_grid_2threads", "verlet_grid 0", "verlet_grid 0.02",
-                                            "verlet_grid 0.3"};
+    const std::vector<std::string> names = {"uniform_grid", "uniform_grid_2threads", "verlet_grid 0",
+                                            "verlet_grid 0.02", "verlet_grid 0.3"};
     std::vector<std::unique_ptr<Peer<Dim>>> peers;
     peers.push_back(make_uniform_grid_peer<Dim>(1));
     peers.push_back(make_uniform_grid_peer<Dim>(2));
@@ -78,9 +78,9 @@ int check(const Case& one, double update_factor, std::size_t steps) {
 int main() {
     using smb::bench::Case;
     const std::vector<Case> cases = {
-        {"paper", 3, 5000}, {"paper", 2}, {"sparse", 3},      {"clustered", 3},   {"clustered", 2},
-        {"mixed", 3},       {"mixed", 2}, {"loguniform2", 3}, {"loguniform2", 2}, {"loguniform3", 3},
-        {"loguniform3", 2}, {"islands", 3}, {"islands", 2},   {"plane", 3},       {"plane", 2},
+        {"paper", 3, 5000}, {"paper", 2},   {"sparse", 3},      {"clustered", 3},   {"clustered", 2},
+        {"mixed", 3},       {"mixed", 2},   {"loguniform2", 3}, {"loguniform2", 2}, {"loguniform3", 3},
+        {"loguniform3", 2}, {"islands", 3}, {"islands", 2},     {"plane", 3},       {"plane", 2},
         {"rods", 3},        {"rods", 2},
     };
     int failures = 0;

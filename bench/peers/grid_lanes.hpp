@@ -9,6 +9,7 @@
 // with that target and chosen when the program runs (best_lanes()). There is no 16-lane AVX-512
 // version: the machine the comparison runs on has no AVX-512 to test it.
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -116,8 +117,8 @@ inline constexpr std::array<std::uint64_t, 256> front_of = [] {
 }();
 
 template <>
-[[gnu::target("avx2,popcnt")]] inline std::uint32_t* pack<8>(
-    std::uint32_t* out, unsigned bits, const Vectors<8>::Ints& positions) noexcept {
+[[gnu::target("avx2,popcnt")]] inline std::uint32_t* pack<8>(std::uint32_t* out, unsigned bits,
+                                                             const Vectors<8>::Ints& positions) noexcept {
     const __m256i order = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(front_of[bits])));
     const __m256i packed = _mm256_permutevar8x32_epi32(__builtin_bit_cast(__m256i, positions), order);
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), packed);
@@ -126,24 +127,35 @@ template <>
 
 #endif
 
+/// The lanes of one compare: the boxes at [at, at + Lanes) of `columns` that overlap `query`
+/// (closed: touching counts) and lie before `to`, their positions appended to `out`.
+template <std::size_t Lanes, int Dim>
+[[gnu::always_inline]] inline std::uint32_t* test_lanes(const Columns<Dim>& columns, const Query<Lanes, Dim>& query,
+                                                        std::uint32_t at, std::uint32_t to,
+                                                        std::uint32_t* out) noexcept {
+    using Ints = typename Vectors<Lanes>::Ints;
+    Ints hit = (load<Lanes>(columns.min[0] + at) <= query.max[0]) & (load<Lanes>(columns.max[0] + at) >= query.min[0]);
+    for (int k = 1; k < Dim; ++k)
+        hit &= (load<Lanes>(columns.min[k] + at) <= query.max[k]) & (load<Lanes>(columns.max[k] + at) >= query.min[k]);
+    const auto left = static_cast<std::int64_t>(to) - static_cast<std::int64_t>(at);
+    const unsigned valid = (1U << std::clamp<std::int64_t>(left, 0, Lanes)) - 1;
+    Ints positions;
+    for (std::size_t lane = 0; lane < Lanes; ++lane) positions[lane] = static_cast<std::int32_t>(at + lane);
+    return pack<Lanes>(out, lane_bits<Lanes>(hit) & valid, positions);
+}
+
 /// Appends to `out` the position of every box in [from, to) of `columns` that overlaps `query`
-/// (closed: touching counts) and returns the new end. `out` needs room for to - from + Lanes.
+/// and returns the new end. The first two compares run whatever the length: most runs are that
+/// short, and a loop whose length varies from run to run would cost a mispredicted branch each.
+/// `out` needs room for to - from + 2 Lanes, `columns` 2 Lanes floats readable from `from`.
 template <std::size_t Lanes, int Dim>
 [[gnu::always_inline]] inline std::uint32_t* test_run(const Columns<Dim>& columns, const Query<Lanes, Dim>& query,
                                                       std::uint32_t from, std::uint32_t to,
                                                       std::uint32_t* out) noexcept {
-    using Ints = typename Vectors<Lanes>::Ints;
-    Ints positions;
-    for (std::size_t lane = 0; lane < Lanes; ++lane) positions[lane] = static_cast<std::int32_t>(from + lane);
-    for (std::uint32_t j = from; j < to; j += Lanes) {
-        Ints hit = (load<Lanes>(columns.min[0] + j) <= query.max[0]) & (load<Lanes>(columns.max[0] + j) >= query.min[0]);
-        for (int k = 1; k < Dim; ++k)
-            hit &= (load<Lanes>(columns.min[k] + j) <= query.max[k]) & (load<Lanes>(columns.max[k] + j) >= query.min[k]);
-        const std::uint32_t left = to - j;
-        const unsigned valid = left >= Lanes ? (1U << Lanes) - 1 : (1U << left) - 1;
-        out = pack<Lanes>(out, lane_bits<Lanes>(hit) & valid, positions);
-        positions += static_cast<std::int32_t>(Lanes);
-    }
+    out = test_lanes<Lanes, Dim>(columns, query, from, to, out);
+    out = test_lanes<Lanes, Dim>(columns, query, from + Lanes, to, out);
+    for (std::uint32_t at = from + 2 * Lanes; at < to; at += Lanes)
+        out = test_lanes<Lanes, Dim>(columns, query, at, to, out);
     return out;
 }
 

@@ -31,14 +31,13 @@ float rounded_up(double extent) {
     return rounded;
 }
 
-/// Appends the hits of one run of positions, [from, to), after the `used` first of `hits`.
+/// Appends the hits of one run of positions, [from, to), after the `used` first of `hits`, which
+/// has room for every position (a box's runs never share one) and 2 Lanes more.
 template <std::size_t Lanes, int Dim>
 [[gnu::always_inline]] inline std::size_t append_hits(const grid_lanes::Columns<Dim>& columns,
                                                       const grid_lanes::Query<Lanes, Dim>& query, std::uint32_t from,
                                                       std::uint32_t to, std::vector<std::uint32_t>& hits,
                                                       std::size_t used) {
-    if (from >= to) return used;
-    if (used + (to - from) + Lanes > hits.size()) hits.resize(2 * (used + (to - from) + Lanes));
     return static_cast<std::size_t>(grid_lanes::test_run<Lanes, Dim>(columns, query, from, to, hits.data() + used) -
                                     hits.data());
 }
@@ -285,6 +284,7 @@ template <std::size_t Lanes, class Sink>
 [[gnu::always_inline]] inline void UniformGrid<Dim>::scan_in_lanes(Sink& sink, std::size_t from, std::size_t to,
                                                                    std::vector<Index>& hits) const {
     const grid_lanes::Columns<Dim> columns = this->columns();
+    hits.resize(order_.size() + 2 * Lanes);
     const Index* begin = cell_begin_.data();
     const std::size_t row_length = cells_[0];
     const std::size_t plane = Dim == 3 ? cells_[0] * cells_[1] : 0;
@@ -341,13 +341,19 @@ void UniformGrid<Dim>::find_overlapping(const BenchBox<Dim>& box, std::vector<In
         low[k] = cell_of(box.min[k] - largest_extent_[k], k);
         high[k] = cell_of(box.max[k], k);
     }
-    std::size_t used = positions.size();
-    positions.resize(used + 4);
     const Index* begin = cell_begin_.data();
     const Index z_low = Dim == 3 ? low[Dim - 1] : 0, z_high = Dim == 3 ? high[Dim - 1] : 0;
+    const auto row_of = [&](Index y, Index z) { return (Dim == 3 ? z * cells_[1] : 0) * cells_[0] + y * cells_[0]; };
+    // Room for every candidate first: the runs write up to 8 slots past their hits.
+    std::size_t candidates = order_.size() - grid_count_ + 8;
+    for (Index z = z_low; z <= z_high; ++z)
+        for (Index y = low[1]; y <= high[1]; ++y)
+            candidates += begin[row_of(y, z) + high[0] + 1] - begin[row_of(y, z) + low[0]] + 8;
+    std::size_t used = positions.size();
+    positions.resize(used + candidates);
     for (Index z = z_low; z <= z_high; ++z) {
         for (Index y = low[1]; y <= high[1]; ++y) {
-            const std::size_t row = (Dim == 3 ? z * cells_[1] : 0) * cells_[0] + y * cells_[0];
+            const std::size_t row = row_of(y, z);
             used = append_hits<4, Dim>(columns, query, begin[row + low[0]], begin[row + high[0] + 1], positions, used);
         }
     }

@@ -76,7 +76,7 @@ public:
 
 private:
     using Index = std::uint32_t;
-    static constexpr std::size_t padding = 16;  ///< floats readable past the last box
+    static constexpr std::size_t padding = 32;  ///< floats readable past the last box
 
     /// Where one thread's hits go: by ids (find_pairs) or by positions (find_position_pairs).
     struct IdSink;
