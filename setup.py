@@ -28,6 +28,7 @@ class Progress:
 
     def __init__(self):
         self.start = time.monotonic()
+        self.told = False
         self.terminal = None
         if not sys.stdout.isatty():
             try:
@@ -39,7 +40,9 @@ class Progress:
         line = f"smb: {text} ({time.monotonic() - self.start:.0f} s)"
         print(line, flush=True)
         if self.terminal is not None:
-            self.terminal.write(line + "\n")
+            # The first line starts a line of its own: pip's spinner leaves the cursor after its text.
+            self.terminal.write(("" if self.told else "\n") + line + "\n")
+            self.told = True
             self.terminal.flush()
 
     @staticmethod

@@ -158,7 +158,8 @@ class Detector(_Readouts):
         out: a writeable C-contiguous (M, 2) int64 array to reuse for the pairs: when they fit
         (P <= M) they are written into its first rows and out[:P] is returned; otherwise a new
         array is returned, so len(result) > len(out) says to grow out for the next call. A loop
-        that passes the same out spares each call a fresh allocation of its pairs.
+        that passes the same out spares each call a fresh allocation of its pairs; the detector
+        keeps the vector it detects into (16 bytes a pair) for the next such call.
         """
         return self._impl.detect(boxes, categories, masks, static, bool(sort), out)
 
