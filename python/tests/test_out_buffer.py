@@ -62,3 +62,21 @@ def test_a_bad_buffer_changes_nothing(bad, error):
     world = smb.World(2)
     with pytest.raises(TypeError, match="uint64"):
         world.detect(out=np.empty((4, 2), dtype=np.int64))
+
+
+def test_a_failed_detection_into_a_buffer_changes_nothing():
+    rng = np.random.default_rng(6)
+    boxes = random_boxes(rng, 100, 3, np.float64)
+    detector = smb.Detector(3, events=True)
+    out = np.zeros((5000, 2), dtype=np.int64)
+    first = detector.detect(boxes, out=out).copy()
+    bad = boxes.copy()
+    bad[7, 1, 0] = np.nan
+    with pytest.raises(smb.InvalidBoxError):
+        detector.detect(bad, out=out)
+    with pytest.raises(smb.PairLimitError):
+        smb.Detector(3, max_pairs_held=1).detect(boxes, out=out)
+    np.testing.assert_array_equal(out[:len(first)], first)
+    again = detector.detect(boxes, out=out)
+    assert as_set(again) == as_set(first) and len(again) == len(first)
+    assert len(detector.begun) == 0 and len(detector.ended) == 0
