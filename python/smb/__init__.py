@@ -3,21 +3,25 @@
 
 Boxes are arrays of shape (N, 2, D), rows min then max, or (N, 2*D) as
 xmin, ymin[, zmin], xmax, ymax[, zmax]; D is 2 or 3, the dtype float32 or float64. Two boxes
-overlap when they overlap or touch on every axis (closed boxes). Pairs come back as (P, 2) int64
-arrays. Detection runs without the GIL.
+overlap when they overlap or touch on every axis (closed boxes). Pairs of indices (Detector,
+find_overlapping_pairs) come back as (P, 2) int64 arrays, pairs of ids (World, whose ids are
+any integers in [0, 2**64 - 1]) as (P, 2) uint64 arrays. Detection runs without the GIL.
 
 Errors: bad boxes (NaN, infinity, min > max), unknown and duplicate ids raise InvalidBoxError,
 UnknownIdError and DuplicateIdError, subclasses of smb.Error, itself a ValueError; a call that
-raises changes nothing. A wrong shape raises ValueError, a wrong dtype TypeError.
+raises changes nothing. A wrong shape or value raises ValueError, a wrong type or dtype
+TypeError (integer boxes that float64 cannot hold exactly included).
 """
 
-from __future__ import annotations
-
-import math
+import collections as _collections
+import math as _math
 
 import numpy as _np
 
+from . import _arguments
 from . import _smb
+from ._box_index import BoxIndex
+from ._pair_events import PairEvents
 from ._smb import (
     ArgumentError,
     DuplicateIdError,
@@ -30,10 +34,13 @@ from ._smb import (
 
 __all__ = [
     "ArgumentError",
+    "BoxIndex",
+    "CandidatePairs",
     "Detector",
     "DuplicateIdError",
     "Error",
     "InvalidBoxError",
+    "PairEvents",
     "PairLimitError",
     "UnknownIdError",
     "World",
@@ -41,8 +48,33 @@ __all__ = [
     "openmp_enabled",
 ]
 
-_DEFAULT_TARGET_CELL_POPULATION = 24
-_DEFAULT_MAX_PAIRS_HELD = 1 << 28
+Error.__doc__ = """What the library refuses: the base of smb's own errors, a ValueError."""
+InvalidBoxError.__doc__ = """A box with NaN, an infinity or min > max on some axis (the message names its
+index or id), or a box too large for a periodic domain. Nothing changed."""
+UnknownIdError.__doc__ = """An id that the World does not hold (update, remove, box, filter, ...).
+Nothing changed."""
+DuplicateIdError.__doc__ = """An id that the World holds already, or one named twice in one insert.
+Nothing changed."""
+PairLimitError.__doc__ = """A detection found more than max_pairs_held pairs: the limit that keeps a
+runaway scene from exhausting memory. Raise max_pairs_held if the memory allows."""
+ArgumentError.__doc__ = """A bad setting, ray, periodic domain or call sequence (a periodic detection
+on a World with filters, a swap_remove with removed > last). Nothing changed."""
+
+CandidatePairs = _collections.namedtuple("CandidatePairs", ["pairs", "margin", "available"])
+CandidatePairs.__doc__ = """Detector.candidates(): the Verlet list of a Detector with a skin.
+
+pairs: (C, 2) int64, every pair of indices whose fat boxes (each box as it was when the list
+was made, grown by the skin) overlap, i < j, in an unspecified order; a superset of the last
+detection's pairs. margin: every pair of boxes that overlap once each is grown by margin on
+every side is in pairs (about the skin after a rebuild, less as boxes move). available: False,
+with pairs empty, when the last detection did not use the list (no skin, no detection yet,
+filters, a periodic domain, boxes that moved more than the skin); use the detection's pairs."""
+CandidatePairs.pairs.__doc__ = "(C, 2) int64 array of candidate pairs of indices, i < j."
+CandidatePairs.margin.__doc__ = "Growth of every box within which pairs holds every overlapping pair."
+CandidatePairs.available.__doc__ = "Whether the last detection kept a candidate list."
+
+_DEFAULT_TARGET_CELL_POPULATION = _arguments.DEFAULT_TARGET_CELL_POPULATION
+_DEFAULT_MAX_PAIRS_HELD = _arguments.DEFAULT_MAX_PAIRS_HELD
 
 
 def find_overlapping_pairs(boxes, b_boxes=None, *, threads=1,
@@ -58,23 +90,13 @@ def find_overlapping_pairs(boxes, b_boxes=None, *, threads=1,
     when both are float32). threads: OpenMP threads (0: all cores). More than max_pairs_held
     pairs raise PairLimitError.
     """
+    threads = _arguments.count("threads", threads)
+    target_cell_population = _arguments.count("target_cell_population", target_cell_population)
+    max_pairs_held = _arguments.count("max_pairs_held", max_pairs_held)
     if b_boxes is None:
         return _smb.find_overlapping_pairs(boxes, threads, target_cell_population, max_pairs_held)
     return _smb.find_overlapping_pairs_between(boxes, b_boxes, threads, target_cell_population,
                                                max_pairs_held)
-
-
-def _implementation(prefix, dim, dtype):
-    if dim not in (2, 3):
-        raise ValueError(f"dim must be 2 or 3; got {dim!r}")
-    dtype = _np.dtype(dtype)
-    if dtype == _np.float32:
-        suffix = "f"
-    elif dtype == _np.float64:
-        suffix = "d"
-    else:
-        raise TypeError(f"dtype must be float32 or float64; got {dtype}")
-    return getattr(_smb, f"{prefix}{dim}{suffix}"), dtype
 
 
 class _Readouts:
@@ -97,6 +119,7 @@ class _Readouts:
 
     @property
     def threads(self):
+        """OpenMP threads a detection may use (0: all cores), as constructed."""
         return self._impl.threads
 
 
@@ -119,20 +142,36 @@ class Detector(_Readouts):
     def __init__(self, dim=3, dtype=_np.float64, *, skin=0.0, threads=1, events=False,
                  target_cell_population=_DEFAULT_TARGET_CELL_POPULATION,
                  max_pairs_held=_DEFAULT_MAX_PAIRS_HELD):
-        implementation, self.dtype = _implementation("Detector", dim, dtype)
-        self.dim = dim
-        self._impl = implementation(float(skin), threads, target_cell_population, max_pairs_held,
-                                    bool(events))
+        implementation, self.dim, self.dtype = _arguments.implementation("Detector", dim, dtype)
+        self._impl = implementation(_arguments.real("skin", skin), _arguments.count("threads", threads),
+                                    _arguments.count("target_cell_population", target_cell_population),
+                                    _arguments.count("max_pairs_held", max_pairs_held), bool(events))
 
-    def detect(self, boxes, *, categories=None, masks=None, static=None, sort=False):
+    def detect(self, boxes, *, categories=None, masks=None, static=None, sort=False, out=None):
         """Every overlapping pair (i, j), i < j, of `boxes`, as a (P, 2) int64 array.
 
         categories, masks: per-box collision filter bits (one value or one per box): boxes i
         and j pair when categories[i] & masks[j] and categories[j] & masks[i] are both non-zero.
         static: per-box flags; two static boxes never pair. sort: return the pairs sorted by
         rows (otherwise in a deterministic but unspecified order).
+
+        out: a writeable C-contiguous (M, 2) int64 array to reuse for the pairs: when they fit
+        (P <= M) they are written into its first rows and out[:P] is returned; otherwise a new
+        array is returned, so len(result) > len(out) says to grow out for the next call. A loop
+        that passes the same out spares each call a fresh allocation of its pairs; the detector
+        keeps the vector it detects into (16 bytes a pair) for the next such call.
         """
-        return self._impl.detect(boxes, categories, masks, static, sort)
+        return self._impl.detect(boxes, categories, masks, static, bool(sort), out)
+
+    def candidates(self):
+        """The Verlet list after the last detect(), as CandidatePairs(pairs, margin, available).
+
+        With a skin, the pairs of boxes whose fat boxes overlap: every pair within `margin` of
+        overlapping, for force loops with a cut-off. available is False (pairs empty) when the
+        last detection did not run on the list; the detection's pairs are exact in every case.
+        """
+        pairs, margin, available = self._impl.candidates()
+        return CandidatePairs(pairs, margin, available)
 
     def detect_periodic(self, boxes, lo, hi, *, axes=None, sort=False):
         """Pairs in a periodic domain: (pairs, shifts), (P, 2) int64 and (P, dim) int32.
@@ -141,7 +180,7 @@ class Detector(_Readouts):
         None). Box i overlaps box j translated by shifts[p] periods. Each box's extent must be
         below half the period (else InvalidBoxError).
         """
-        return self._impl.detect_periodic(boxes, lo, hi, axes, sort)
+        return self._impl.detect_periodic(boxes, lo, hi, axes, bool(sort))
 
     @property
     def begun(self):
@@ -154,7 +193,9 @@ class Detector(_Readouts):
         return self._impl.ended
 
     def swap_remove(self, removed, last):
-        """Tells the events that body `last` moved to index `removed`, whose body is gone."""
+        """Tells the events that body `last` moved to index `removed`, whose body is gone: its
+        pairs end at the next detection, and those of the moved body go on under `removed`
+        (no event). removed == last: the last body was popped. ArgumentError if removed > last."""
         self._impl.swap_remove(removed, last)
 
     def replace(self, indices):
@@ -171,6 +212,7 @@ class Detector(_Readouts):
 
     @property
     def skin(self):
+        """How much each box is grown for the candidate list kept between calls (0: none)."""
         return self._impl.skin
 
     def __repr__(self):
@@ -180,9 +222,10 @@ class Detector(_Readouts):
 class World(_Readouts):
     """A set of moving boxes under caller-chosen ids, and the SMB broad phase over them.
 
-    Ids are non-negative integers below 2**63 (int64 on the way back). insert, update and
-    remove take arrays of ids and boxes and change all or nothing; detect() then returns every
-    overlapping pair of ids (a, b), a < b. The world keeps its axial cuts from one detection to
+    Ids are integers in [0, 2**64 - 1]: Python integers, or arrays of any integer dtype (uint64
+    reaches the whole range); they come back as uint64, the dtype that holds every id. insert,
+    update and remove take arrays of ids and boxes and change all or nothing; detect() then
+    returns every overlapping pair of ids (a, b), a < b. The world keeps its axial cuts from one detection to
     the next, so a detection after small motions costs linear time.
 
     dim, dtype, threads, events: as Detector. pipeline: 'persistent_cuts' (the default) or
@@ -193,10 +236,11 @@ class World(_Readouts):
                  pipeline="persistent_cuts",
                  target_cell_population=_DEFAULT_TARGET_CELL_POPULATION,
                  max_pairs_held=_DEFAULT_MAX_PAIRS_HELD):
-        implementation, self.dtype = _implementation("World", dim, dtype)
-        self.dim = dim
-        self._impl = implementation(threads, target_cell_population, max_pairs_held, pipeline,
-                                    bool(events))
+        implementation, self.dim, self.dtype = _arguments.implementation("World", dim, dtype)
+        self._impl = implementation(_arguments.count("threads", threads),
+                                    _arguments.count("target_cell_population", target_cell_population),
+                                    _arguments.count("max_pairs_held", max_pairs_held),
+                                    _arguments.pipeline(pipeline), bool(events))
 
     def insert(self, ids, boxes):
         """Adds boxes[i] under ids[i]. DuplicateIdError for an id present or named twice."""
@@ -219,33 +263,36 @@ class World(_Readouts):
         self._impl.clear()
 
     def __len__(self):
+        """The number of boxes held."""
         return self._impl.size()
 
     def __contains__(self, id):
+        """Whether a box is under `id`; False for anything that cannot be an id."""
         return self._impl.contains(id)
 
     def box(self, id):
         """The box under `id`, a (2, dim) array (rows min, max). UnknownIdError if absent."""
         return self._impl.box(id)
 
-    def detect(self, *, sort=False):
-        """Every overlapping pair of ids (a, b), a < b, as a (P, 2) int64 array.
+    def detect(self, *, sort=False, out=None):
+        """Every overlapping pair of ids (a, b), a < b, as a (P, 2) uint64 array.
 
         With filters or static boxes set, only the pairs they let through. sort: sorted by rows
-        (otherwise in a deterministic but unspecified order).
+        (otherwise in a deterministic but unspecified order). out: a (M, 2) uint64 array to
+        reuse, as Detector.detect's out.
         """
-        return self._impl.detect(sort)
+        return self._impl.detect(bool(sort), out)
 
     def detect_periodic(self, lo, hi, *, axes=None, sort=False):
         """Pairs in a periodic domain: (pairs, shifts), as Detector.detect_periodic.
 
         ArgumentError while filters or static boxes are in use.
         """
-        return self._impl.detect_periodic(lo, hi, axes, sort)
+        return self._impl.detect_periodic(lo, hi, axes, bool(sort))
 
     @property
     def begun(self):
-        """Pairs of the last detection that were not in the one before, sorted ((P, 2) int64)."""
+        """Pairs of the last detection that were not in the one before, sorted ((P, 2) uint64)."""
         return self._impl.begun
 
     @property
@@ -268,25 +315,25 @@ class World(_Readouts):
         self._impl.set_static(ids, bool(is_static))
 
     def is_static(self, id):
+        """Whether box `id` is static. UnknownIdError if absent."""
         return self._impl.is_static(id)
 
     def query(self, box):
-        """Ids of the boxes overlapping `box` ((2, dim) or (2*dim,)), sorted, int64."""
+        """Ids of the boxes overlapping `box` ((2, dim) or (2*dim,)), sorted, uint64."""
         return self._impl.query(box)
 
     def query_batch(self, boxes):
-        """(H, 2) int64 array of (query index, id) for every box overlapping each query box,
+        """(H, 2) uint64 array of (query index, id) for every box overlapping each query box,
         sorted by rows."""
         return self._impl.query_batch(boxes)
 
-    def cast_ray(self, origin, direction, max_t=math.inf, *, all=False):
+    def cast_ray(self, origin, direction, max_t=_math.inf, *, all=False):
         """The boxes the ray origin + t * direction, 0 <= t <= max_t, enters: (ids, t).
 
         The nearest one (least t, then least id), or with all=True every one sorted by (t, id).
         t is 0 for a box containing the origin. ArgumentError for an invalid ray.
         """
-        return self._impl.cast_ray(origin, direction, float(max_t), all)
-
+        return self._impl.cast_ray(origin, direction, _arguments.real("max_t", max_t), bool(all))
 
     def __repr__(self):
         return f"smb.World(dim={self.dim}, dtype={self.dtype.name}, size={len(self)})"

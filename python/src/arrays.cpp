@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "arrays.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <type_traits>
@@ -20,28 +21,52 @@ bool aligned(const py::array& array, std::size_t alignment) {
     return reinterpret_cast<std::uintptr_t>(array.data()) % alignment == 0;
 }
 
+/// True when every integer of `array` (dtype Int after a conversion that keeps the values)
+/// is a Real exactly. A float64 holds the integers up to 2^53, a float32 those up to 2^24, and
+/// beyond that only some; NumPy calls int64 to float64 a "safe" cast all the same.
+template <std::floating_point Real, class Int>
+bool integers_exact(const py::array& array) {
+    const auto values = py::array_t<Int, py::array::c_style | py::array::forcecast>(array);
+    // 2^63 or 2^64: the first value past Int, exactly a Real.
+    const Real past = std::ldexp(Real{1}, std::numeric_limits<Int>::digits);
+    const Int* data = values.data();
+    for (py::ssize_t i = 0; i < values.size(); ++i) {
+        const auto real = static_cast<Real>(data[i]);
+        if (!(real < past) || static_cast<Int>(real) != data[i]) return false;
+    }
+    return true;
+}
+
 /// `array` as C-contiguous Real: itself when it is already that, else a converted copy. A dtype
-/// that NumPy casts to Real without loss is converted; any other integer or float dtype only
-/// when every value survives the conversion (so the boxes detected are the caller's boxes).
+/// that converts to Real without loss whatever its values is converted; any other integer or
+/// float dtype only when every value survives the conversion (so the boxes detected are the
+/// caller's boxes).
 template <std::floating_point Real>
 py::array as_real(const py::array& array, const char* what) {
     const py::dtype wanted = py::dtype::of<Real>();
     if (!array.dtype().equal(wanted)) {
-        const char kind = array.dtype().kind();
+        const py::dtype given = array.dtype();
+        const char kind = given.kind();
         if (kind != 'f' && kind != 'i' && kind != 'u')
             throw py::type_error(std::string(what) + " must hold numbers (" + dtype_name<Real>() + "); got dtype " +
-                                 py::str(array.dtype()).cast<std::string>());
-        const bool lossless = numpy().attr("can_cast")(array.dtype(), wanted, "safe").cast<bool>();
-        if (!lossless) {
-            const py::object converted = array.attr("astype")(wanted);
-            const py::object back = converted.attr("astype")(array.dtype());
-            const py::object same = numpy().attr("array_equal")(back, array, py::arg("equal_nan") = true);
-            if (!py::cast<bool>(same))
-                throw py::type_error(std::string(what) + ": the " + py::str(array.dtype()).cast<std::string>() +
-                                     " values do not all convert exactly to " + dtype_name<Real>() +
-                                     ", the dtype expected here; convert them first (.astype(numpy." +
-                                     dtype_name<Real>() + ")) to accept the rounding");
+                                 py::str(py::object(given)).cast<std::string>());
+        bool exact = true;
+        if (kind == 'f') {
+            if (!py::cast<bool>(numpy().attr("can_cast")(given, wanted, "safe"))) {
+                const py::object back = array.attr("astype")(wanted).attr("astype")(given);
+                exact = py::cast<bool>(numpy().attr("array_equal")(back, array, py::arg("equal_nan") = true));
+            }
+        } else {
+            const int magnitude_bits = static_cast<int>(8 * given.itemsize()) - (kind == 'i' ? 1 : 0);
+            if (magnitude_bits > std::numeric_limits<Real>::digits)
+                exact = kind == 'i' ? integers_exact<Real, std::int64_t>(array)
+                                    : integers_exact<Real, std::uint64_t>(array);
         }
+        if (!exact)
+            throw py::type_error(std::string(what) + ": the " + py::str(py::object(given)).cast<std::string>() +
+                                 " values do not all convert exactly to " + dtype_name<Real>() +
+                                 ", the dtype expected here; convert them first (.astype(numpy." + dtype_name<Real>() +
+                                 ")) to accept the rounding");
     }
     py::array result = py::array_t<Real, py::array::c_style | py::array::forcecast>(array);
     // An array over an offset buffer may be misaligned; a fresh copy is not.
@@ -54,8 +79,7 @@ py::array_t<Int, py::array::c_style | py::array::forcecast> as_integers(const py
     return py::array_t<Int, py::array::c_style | py::array::forcecast>(array);
 }
 
-/// `obj` as a 1-D integer array of `count` entries (a single value stands for all), checked to
-/// lie in [0, limit]; returned as int64 or, for uint64 input, uint64.
+/// `array` as integers of type Int, checked to lie in [0, limit].
 template <class Int>
 py::array_t<Int, py::array::c_style | py::array::forcecast> checked_integers(const py::array& array,
                                                                              std::uint64_t limit, const char* what) {
@@ -75,12 +99,12 @@ py::array_t<Int, py::array::c_style | py::array::forcecast> checked_integers(con
 }
 
 /// `obj` as a 1-D array of `count` entries, a 0-d value broadcast to all of them.
-py::array entries_for(py::handle obj, std::size_t count, const char* what) {
+py::array entries_for(py::handle obj, std::size_t count, const char* what, const char* unit = "box") {
     py::array array = as_array(obj);
     if (array.ndim() == 0) return numpy().attr("full")(count, array);
     if (array.ndim() != 1)
         throw py::value_error(std::string(what) + " must be one value or 1-D; got shape " + shape_text(array));
-    check_count(static_cast<std::size_t>(array.shape(0)), count, what);
+    check_count(static_cast<std::size_t>(array.shape(0)), count, what, unit);
     return array;
 }
 
@@ -89,6 +113,22 @@ void check_integer_kind(const py::array& array, const char* what) {
     if (kind != 'i' && kind != 'u' && !(kind == 'b' && array.size() == 0) && !(kind == 'f' && array.size() == 0))
         throw py::type_error(std::string(what) + " must be integers; got dtype " +
                              py::str(array.dtype()).cast<std::string>());
+}
+
+/// Throws TypeError when `obj`, not an array, holds a Python integer that float64 cannot hold
+/// exactly: NumPy would have rounded it on making `array` (float64) of it.
+void check_python_integers(py::handle obj, const py::array& array, const char* what) {
+    if (py::isinstance<py::array>(obj) || array.dtype().kind() != 'f') return;
+    const py::array items = numpy().attr("asarray")(obj, py::arg("dtype") = "object");
+    for (const py::handle item : items.attr("flat")) {
+        if (!PyLong_Check(item.ptr()) || PyBool_Check(item.ptr())) continue;
+        const double value = PyLong_AsDouble(item.ptr());
+        const bool overflow = value == -1.0 && PyErr_Occurred() != nullptr;
+        if (overflow) PyErr_Clear();
+        if (overflow || !py::float_(value).equal(item))
+            throw py::type_error(std::string(what) + ": the integer " + py::repr(item).cast<std::string>() +
+                                 " does not convert exactly to float64; convert it first to accept the rounding");
+    }
 }
 
 }  // namespace
@@ -108,10 +148,10 @@ std::string shape_text(const py::array& array) {
     return text + ")";
 }
 
-void check_count(std::size_t got, std::size_t expected, const char* what) {
+void check_count(std::size_t got, std::size_t expected, const char* what, const char* unit) {
     if (got != expected)
         throw py::value_error(std::string(what) + " has " + std::to_string(got) + " entries; " +
-                              std::to_string(expected) + " expected (one per box)");
+                              std::to_string(expected) + " expected (one per " + unit + ")");
 }
 
 int box_dimension(const py::array& array, const char* what) {
@@ -137,6 +177,7 @@ BoxArray<Real, Dim> box_array(py::handle obj, const char* what) {
         throw py::value_error(std::string(what) + " must have shape (N, 2, " + std::to_string(Dim) + ") or (N, " +
                               std::to_string(2 * Dim) + ") for " + std::to_string(Dim) + "D boxes; got shape " +
                               shape_text(array));
+    check_python_integers(obj, array, what);
     py::array held = as_real<Real>(array, what);
     const auto* first = static_cast<const Box<Real, Dim>*>(held.data());
     return {held, std::span<const Box<Real, Dim>>(first, static_cast<std::size_t>(array.shape(0)))};
@@ -150,6 +191,7 @@ Box<Real, Dim> single_box(py::handle obj, const char* what) {
     if (!shape_ok)
         throw py::value_error(std::string(what) + " must have shape (2, " + std::to_string(Dim) + ") or (" +
                               std::to_string(2 * Dim) + ",); got shape " + shape_text(array));
+    check_python_integers(obj, array, what);
     const py::array held = as_real<Real>(array, what);
     Box<Real, Dim> box;
     std::memcpy(&box, held.data(), sizeof box);
@@ -162,26 +204,11 @@ std::array<Real, Dim> coordinates(py::handle obj, const char* what) {
     if (array.ndim() != 1 || array.shape(0) != Dim)
         throw py::value_error(std::string(what) + " must have shape (" + std::to_string(Dim) + ",); got shape " +
                               shape_text(array));
+    check_python_integers(obj, array, what);
     const py::array held = as_real<Real>(array, what);
     std::array<Real, Dim> values;
     std::memcpy(values.data(), held.data(), sizeof values);
     return values;
-}
-
-IdArray id_array(py::handle obj, const char* what) {
-    py::array array = as_array(obj);
-    if (array.ndim() == 0) array = array.attr("reshape")(1);
-    if (array.ndim() != 1) throw py::value_error(std::string(what) + " must be 1-D; got shape " + shape_text(array));
-    check_integer_kind(array, what);
-    constexpr auto largest = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
-    py::array held;
-    if (array.dtype().kind() == 'u' && array.dtype().itemsize() == 8)
-        held = checked_integers<std::uint64_t>(array, largest, what);
-    else
-        held = checked_integers<std::int64_t>(array, largest, what);
-    static_assert(sizeof(BoxId) == sizeof(std::int64_t));
-    return {held,
-            std::span<const BoxId>(static_cast<const BoxId*>(held.data()), static_cast<std::size_t>(held.size()))};
 }
 
 std::vector<std::uint32_t> uint32_values(py::handle obj, std::size_t count, const char* what) {
@@ -199,8 +226,8 @@ std::vector<std::uint32_t> uint32_values(py::handle obj, std::size_t count, cons
     return values;
 }
 
-std::vector<std::uint8_t> flag_values(py::handle obj, std::size_t count, const char* what) {
-    const py::array array = entries_for(obj, count, what);
+std::vector<std::uint8_t> flag_values(py::handle obj, std::size_t count, const char* what, const char* unit) {
+    const py::array array = entries_for(obj, count, what, unit);
     const char kind = array.dtype().kind();
     if (kind != 'b' && kind != 'i' && kind != 'u')
         throw py::type_error(std::string(what) + " must be booleans; got dtype " +
@@ -221,29 +248,6 @@ std::vector<Filter> filter_values(py::handle categories, py::handle masks, std::
         for (std::size_t i = 0; i < count; ++i) filters[i].mask = values[i];
     }
     return filters;
-}
-
-py::array_t<std::int64_t> pair_array(std::vector<Pair>&& pairs) {
-    static_assert(sizeof(Pair) == 2 * sizeof(std::int64_t), "a pair must be two ids to be handed over in place");
-    auto* held = new std::vector<Pair>(std::move(pairs));
-    const py::capsule keep_alive(held, [](void* p) { delete static_cast<std::vector<Pair>*>(p); });
-    const auto count = static_cast<py::ssize_t>(held->size());
-    const auto* first = reinterpret_cast<const std::int64_t*>(held->data());
-    return py::array_t<std::int64_t>({count, py::ssize_t{2}}, {py::ssize_t{sizeof(Pair)}, py::ssize_t{8}}, first,
-                                     keep_alive);
-}
-
-py::array_t<std::int64_t> pair_array_copy(std::span<const Pair> pairs) {
-    py::array_t<std::int64_t> array({static_cast<py::ssize_t>(pairs.size()), py::ssize_t{2}});
-    if (!pairs.empty()) std::memcpy(array.mutable_data(), pairs.data(), pairs.size_bytes());
-    return array;
-}
-
-py::array_t<std::int64_t> id_result(std::vector<BoxId>&& ids) {
-    auto* held = new std::vector<BoxId>(std::move(ids));
-    const py::capsule keep_alive(held, [](void* p) { delete static_cast<std::vector<BoxId>*>(p); });
-    return py::array_t<std::int64_t>({static_cast<py::ssize_t>(held->size())}, {py::ssize_t{8}},
-                                     reinterpret_cast<const std::int64_t*>(held->data()), keep_alive);
 }
 
 #define SMB_PYTHON_INSTANTIATE(Real, Dim)                                       \

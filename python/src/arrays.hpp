@@ -9,6 +9,7 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -53,35 +54,67 @@ Box<Real, Dim> single_box(py::handle obj, const char* what);
 template <std::floating_point Real, int Dim>
 std::array<Real, Dim> coordinates(py::handle obj, const char* what);
 
-/// Ids of one call: non-negative integers below 2^63 (so that they come back as int64), a 1-D
-/// array or a single integer. Read in place when the array is C-contiguous int64 or uint64.
+/// Ids of one call: integers in [0, 2^64), a 1-D array or a single integer. Read in place when
+/// the array is C-contiguous uint64, or int64 with no negative entry; an array of Python
+/// integers too large for int64 (dtype object) is read one by one. Negative or larger values
+/// raise ValueError, other dtypes TypeError.
 struct IdArray {
     py::array array;
     std::span<const BoxId> ids;
 };
 IdArray id_array(py::handle obj, const char* what);
 
+/// `obj` as an array of ids to be read by id_array: as_array, except that a list NumPy would
+/// turn into float64 (Python integers at or above 2^63 beside others) becomes an object array.
+py::array as_id_array(py::handle obj);
+
+/// One id (a Python or NumPy integer in [0, 2^64)); ValueError or TypeError naming `what`.
+BoxId single_id(py::handle obj, const char* what);
+
+/// One id, or nothing when `obj` is not an integer in [0, 2^64) (no box can be under it).
+std::optional<BoxId> id_if_valid(py::handle obj);
+
 /// Integers in [0, 2^32) for `count` boxes: a 1-D array of that length or one value for all.
 std::vector<std::uint32_t> uint32_values(py::handle obj, std::size_t count, const char* what);
 
-/// Flags for `count` boxes (non-zero: set): a 1-D array of that length or one value for all.
-std::vector<std::uint8_t> flag_values(py::handle obj, std::size_t count, const char* what);
+/// Flags for `count` boxes (non-zero: set): a 1-D array of that length or one value for all;
+/// `unit` names what each flag is for ("box", "axis").
+std::vector<std::uint8_t> flag_values(py::handle obj, std::size_t count, const char* what, const char* unit = "box");
 
 /// The filters of `count` boxes from category and mask values (None: the default, 1 and every
 /// bit); empty when both are None.
 std::vector<Filter> filter_values(py::handle categories, py::handle masks, std::size_t count);
 
-/// A (P, 2) int64 array that takes over `pairs` without copying them.
-py::array_t<std::int64_t> pair_array(std::vector<Pair>&& pairs);
+/// The dtype pairs and ids come back in: int64 for indices (Detector, find_overlapping_pairs),
+/// uint64 for ids (World), which may use the whole 64-bit range.
+template <class T>
+concept OutputId = std::same_as<T, std::int64_t> || std::same_as<T, std::uint64_t>;
 
-/// A (P, 2) int64 array holding a copy of `pairs`.
-py::array_t<std::int64_t> pair_array_copy(std::span<const Pair> pairs);
+/// A (P, 2) array that takes over `pairs` without copying them.
+template <OutputId Id>
+py::array_t<Id> pair_array(std::vector<Pair>&& pairs);
 
-/// A 1-D int64 array that takes over `ids` without copying them.
-py::array_t<std::int64_t> id_result(std::vector<BoxId>&& ids);
+/// A (P, 2) array holding a copy of `pairs`.
+template <OutputId Id>
+py::array_t<Id> pair_array_copy(std::span<const Pair> pairs);
 
-/// Throws ValueError saying that `what` has `got` entries where `expected` were needed.
-void check_count(std::size_t got, std::size_t expected, const char* what);
+/// A 1-D array that takes over `ids` without copying them.
+template <OutputId Id>
+py::array_t<Id> id_result(std::vector<BoxId>&& ids);
+
+/// `out` checked as a buffer for pairs: a writeable, C-contiguous (M, 2) array of dtype Id.
+/// Throws ValueError (shape, layout) or TypeError (dtype) before anything else happens.
+template <OutputId Id>
+py::array pair_buffer_array(py::handle out);
+
+/// `pairs` copied into the first rows of `out` (checked by pair_buffer_array) and out[:P]
+/// returned when they fit; otherwise a new array holding them.
+template <OutputId Id>
+py::array pairs_into(py::array out, std::span<const Pair> pairs);
+
+/// Throws ValueError saying that `what` has `got` entries where `expected` were needed, one per
+/// `unit` ("box", "axis", "id").
+void check_count(std::size_t got, std::size_t expected, const char* what, const char* unit = "box");
 
 /// The shape of an array as Python writes it: "(3, 2, 2)".
 std::string shape_text(const py::array& array);

@@ -24,6 +24,14 @@ void bind_detectors(py::module_& module);
 void bind_worlds(py::module_& module);
 /// The World's queries and ray casts, added to the classes bind_worlds made.
 void bind_world_queries(py::module_& module);
+/// smb._smb.BoxIndex2f ... BoxIndex3d, wrapped by smb.BoxIndex.
+void bind_box_indexes(py::module_& module);
+/// smb._smb.PairEvents, wrapped by smb.PairEvents.
+void bind_pair_events(py::module_& module);
+
+/// A PairLimitError's message as Python tells it: the library's advice to use its streaming
+/// call (which the binding does not offer) replaced by what Python can do.
+std::string python_pair_limit_message(const std::string& message);
 
 /// Marks an object as being in a call. Detection runs without the GIL, so a second Python
 /// thread could otherwise enter the same World or Detector, which is not synchronised; it gets

@@ -43,35 +43,56 @@ struct DetectorHandle {
     Detector<Real, Dim> detector;
     std::unique_ptr<PairEvents> events;
     std::size_t last_pair_count = 0;
+    /// The pairs of the detections that write into the caller's buffer (out=): kept from call
+    /// to call, so that its pages stay mapped, as a C++ caller's reused vector.
+    std::vector<Pair> reused;
     /// Mutable: reads take it too, since a detection in another thread changes what they read.
     mutable BusyFlag busy;
 };
 
 template <std::floating_point Real, int Dim>
-py::array_t<std::int64_t> detect(DetectorHandle<Real, Dim>& self, py::handle boxes, py::handle categories,
-                                 py::handle masks, py::handle statics, bool sort) {
+py::array detect(DetectorHandle<Real, Dim>& self, py::handle boxes, py::handle categories, py::handle masks,
+                 py::handle statics, bool sort, py::handle out) {
+    const py::array buffer = out.is_none() ? py::array() : pair_buffer_array<std::int64_t>(out);
     const auto input = box_array<Real, Dim>(boxes, "boxes");
     const std::size_t count = input.boxes.size();
     const std::vector<Filter> filters = filter_values(categories, masks, count);
     const std::vector<std::uint8_t> static_flags =
         statics.is_none() ? std::vector<std::uint8_t>{} : flag_values(statics, count, "static");
     const BusyScope busy(self.busy, "this Detector");
-    std::vector<Pair> pairs = self.pair_buffer();
+    std::vector<Pair> pairs = out.is_none() ? self.pair_buffer() : std::move(self.reused);
+    pairs.clear();
     {
         py::gil_scoped_release unlocked;
-        if (!filters.empty() || !static_flags.empty()) {
-            const DetectFilters detect_filters{filters, static_flags, {}};
-            self.detector.detect(input.boxes, detect_filters, pairs);
-            if (self.events) self.events->update(pairs);
-        } else if (self.events) {
-            self.detector.detect(input.boxes, pairs, *self.events);
-        } else {
-            self.detector.detect(input.boxes, pairs);
+        try {
+            if (!filters.empty() || !static_flags.empty()) {
+                const DetectFilters detect_filters{filters, static_flags, {}};
+                self.detector.detect(input.boxes, detect_filters, pairs);
+                if (self.events) self.events->update(pairs);
+            } else if (self.events) {
+                self.detector.detect(input.boxes, pairs, *self.events);
+            } else {
+                self.detector.detect(input.boxes, pairs);
+            }
+        } catch (...) {
+            if (!out.is_none()) self.reused = std::move(pairs);
+            throw;
         }
         if (sort) sort_pairs(pairs);
     }
     self.last_pair_count = pairs.size();
-    return pair_array(std::move(pairs));
+    if (out.is_none()) return pair_array<std::int64_t>(std::move(pairs));
+    self.reused = std::move(pairs);
+    return pairs_into<std::int64_t>(buffer, self.reused);
+}
+
+/// (pairs, margin, available) of Detector::candidates(), the pairs copied (they live only until
+/// the next detection).
+template <std::floating_point Real, int Dim>
+py::tuple candidates(DetectorHandle<Real, Dim>& self) {
+    const BusyScope busy(self.busy, "this Detector");
+    const CandidatePairs list = self.detector.candidates();
+    return py::make_tuple(pair_array_copy<std::int64_t>(list.pairs), list.margin, list.available);
 }
 
 template <std::floating_point Real, int Dim>
@@ -89,7 +110,7 @@ py::tuple detect_periodic(DetectorHandle<Real, Dim>& self, py::handle boxes, py:
             self.detector.detect(input.boxes, domain, pairs);
         if (sort) sort_periodic_pairs(pairs);
     }
-    return periodic_result<Dim>(pairs);
+    return periodic_result<Dim, std::int64_t>(pairs);
 }
 
 template <std::floating_point Real, int Dim>
@@ -108,23 +129,27 @@ void bind_detector(py::module_& module) {
              py::arg("skin"), py::arg("threads"), py::arg("target_cell_population"), py::arg("max_pairs_held"),
              py::arg("events"))
         .def("detect", &detect<Real, Dim>, py::arg("boxes"), py::arg("categories") = py::none(),
-             py::arg("masks") = py::none(), py::arg("static") = py::none(), py::arg("sort") = false)
+             py::arg("masks") = py::none(), py::arg("static") = py::none(), py::arg("sort") = false,
+             py::arg("out") = py::none())
+        .def("candidates", &candidates<Real, Dim>)
         .def("detect_periodic", &detect_periodic<Real, Dim>, py::arg("boxes"), py::arg("lo"), py::arg("hi"),
              py::arg("axes") = py::none(), py::arg("sort") = false)
         .def_property_readonly("begun",
                                [](const Handle& self) {
                                    const BusyScope busy(self.busy, "this Detector");
-                                   return pair_array_copy(self.checked_events().begun());
+                                   return pair_array_copy<std::int64_t>(self.checked_events().begun());
                                })
         .def_property_readonly("ended",
                                [](const Handle& self) {
                                    const BusyScope busy(self.busy, "this Detector");
-                                   return pair_array_copy(self.checked_events().ended());
+                                   return pair_array_copy<std::int64_t>(self.checked_events().ended());
                                })
         .def("swap_remove",
-             [](Handle& self, BoxId removed, BoxId last) {
+             [](Handle& self, py::handle removed, py::handle last) {
+                 const BoxId removed_index = single_id(removed, "removed");
+                 const BoxId last_index = single_id(last, "last");
                  const BusyScope busy(self.busy, "this Detector");
-                 self.checked_events().swap_remove(removed, last);
+                 self.checked_events().swap_remove(removed_index, last_index);
              })
         .def("replace",
              [](Handle& self, py::handle indices) {

@@ -23,7 +23,7 @@ py::array_t<std::int64_t> pairs_within(py::handle boxes, const WorldSettings& se
         pairs = find_overlapping_pairs<Real, Dim>(input.boxes, settings);
         sort_pairs(pairs);
     }
-    return pair_array(std::move(pairs));
+    return pair_array<std::int64_t>(std::move(pairs));
 }
 
 template <std::floating_point Real, int Dim>
@@ -35,7 +35,7 @@ py::array_t<std::int64_t> pairs_between(py::handle first, py::handle second, con
         py::gil_scoped_release unlocked;
         pairs = find_overlapping_pairs<Real, Dim>(a.boxes, b.boxes, settings);
     }
-    return pair_array(std::move(pairs));
+    return pair_array<std::int64_t>(std::move(pairs));
 }
 
 WorldSettings one_shot_settings(std::size_t threads, std::size_t target_cell_population, std::size_t max_pairs_held) {
@@ -51,10 +51,11 @@ py::array_t<std::int64_t> find_pairs(py::handle boxes, std::size_t threads, std:
     const py::array array = as_array(boxes);
     const int dim = box_dimension(array, "boxes");
     const auto settings = one_shot_settings(threads, target_cell_population, max_pairs_held);
-    // float32 boxes are detected as floats; every other dtype as doubles.
+    // float32 boxes are detected as floats; every other dtype as doubles. The caller's object
+    // goes on (not `array`), so that a list's integers are checked as given.
     if (is_float32(array))
-        return dim == 2 ? pairs_within<float, 2>(array, settings) : pairs_within<float, 3>(array, settings);
-    return dim == 2 ? pairs_within<double, 2>(array, settings) : pairs_within<double, 3>(array, settings);
+        return dim == 2 ? pairs_within<float, 2>(boxes, settings) : pairs_within<float, 3>(boxes, settings);
+    return dim == 2 ? pairs_within<double, 2>(boxes, settings) : pairs_within<double, 3>(boxes, settings);
 }
 
 py::array_t<std::int64_t> find_pairs_between(py::handle first, py::handle second, std::size_t threads,
@@ -68,8 +69,10 @@ py::array_t<std::int64_t> find_pairs_between(py::handle first, py::handle second
     const auto settings = one_shot_settings(threads, target_cell_population, max_pairs_held);
     // Two float32 sets are detected as floats; otherwise both as doubles (float32 converts exactly).
     if (is_float32(a) && is_float32(b))
-        return dim == 2 ? pairs_between<float, 2>(a, b, settings) : pairs_between<float, 3>(a, b, settings);
-    return dim == 2 ? pairs_between<double, 2>(a, b, settings) : pairs_between<double, 3>(a, b, settings);
+        return dim == 2 ? pairs_between<float, 2>(first, second, settings)
+                        : pairs_between<float, 3>(first, second, settings);
+    return dim == 2 ? pairs_between<double, 2>(first, second, settings)
+                    : pairs_between<double, 3>(first, second, settings);
 }
 
 }  // namespace

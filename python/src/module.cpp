@@ -3,6 +3,8 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 #include "bindings.hpp"
 #include "smb/errors.hpp"
 #include "smb/settings.hpp"
@@ -45,6 +47,17 @@ const char* precision_name(HeldPrecision precision) {
     return "none";
 }
 
+std::string python_pair_limit_message(const std::string& message) {
+    std::string text = message.substr(0, message.find("; use "));
+    // The setting by its Python name, an argument, not a C++ struct's field.
+    for (const std::string cpp_name : {"WorldSettings::max_pairs_held", "DetectorSettings::max_pairs_held"})
+        if (const std::size_t at = text.find(cpp_name); at != std::string::npos)
+            text.replace(at, cpp_name.size(), "max_pairs_held");
+    return text +
+           "; raise max_pairs_held (an argument of the object or function) if the memory allows, or detect "
+           "over fewer boxes at a time";
+}
+
 }  // namespace smb::python
 
 PYBIND11_MODULE(_smb, module) {
@@ -58,8 +71,17 @@ PYBIND11_MODULE(_smb, module) {
     py::register_exception<smb::InvalidBoxError>(module, "InvalidBoxError", error);
     py::register_exception<smb::UnknownIdError>(module, "UnknownIdError", error);
     py::register_exception<smb::DuplicateIdError>(module, "DuplicateIdError", error);
-    py::register_exception<smb::PairLimitError>(module, "PairLimitError", error);
+    static auto& pair_limit = py::register_exception<smb::PairLimitError>(module, "PairLimitError", error);
     py::register_exception<smb::ArgumentError>(module, "ArgumentError", error);
+    // Tried before the one above: the library's message ends by naming its streaming call,
+    // which Python does not have; Python is told what it has instead.
+    py::register_exception_translator([](std::exception_ptr thrown) {
+        try {
+            if (thrown) std::rethrow_exception(thrown);
+        } catch (const smb::PairLimitError& limit) {
+            pair_limit(python_pair_limit_message(limit.what()).c_str());
+        }
+    });
 
     module.def("openmp_enabled", &smb::openmp_enabled, "True when detect() can use more than one thread.");
 
@@ -67,4 +89,6 @@ PYBIND11_MODULE(_smb, module) {
     bind_detectors(module);
     bind_worlds(module);
     bind_world_queries(module);
+    bind_box_indexes(module);
+    bind_pair_events(module);
 }

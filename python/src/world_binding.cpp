@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,19 +39,28 @@ void insert_or_update(WorldHandle<Real, Dim>& self, py::handle ids, py::handle b
 }
 
 template <std::floating_point Real, int Dim>
-py::array_t<std::int64_t> detect(WorldHandle<Real, Dim>& self, bool sort) {
+py::array detect(WorldHandle<Real, Dim>& self, bool sort, py::handle out) {
+    const py::array buffer = out.is_none() ? py::array() : pair_buffer_array<std::uint64_t>(out);
     const BusyScope busy(self.busy, "this World");
-    std::vector<Pair> pairs = self.pair_buffer();
+    std::vector<Pair> pairs = out.is_none() ? self.pair_buffer() : std::move(self.reused);
+    pairs.clear();
     {
         py::gil_scoped_release unlocked;
-        if (self.events)
-            self.world.detect(pairs, *self.events);
-        else
-            self.world.detect(pairs);
+        try {
+            if (self.events)
+                self.world.detect(pairs, *self.events);
+            else
+                self.world.detect(pairs);
+        } catch (...) {
+            if (!out.is_none()) self.reused = std::move(pairs);
+            throw;
+        }
         if (sort) sort_pairs(pairs);
     }
     self.last_pair_count = pairs.size();
-    return pair_array(std::move(pairs));
+    if (out.is_none()) return pair_array<std::uint64_t>(std::move(pairs));
+    self.reused = std::move(pairs);
+    return pairs_into<std::uint64_t>(buffer, self.reused);
 }
 
 template <std::floating_point Real, int Dim>
@@ -66,7 +76,7 @@ py::tuple detect_periodic(WorldHandle<Real, Dim>& self, py::handle lo, py::handl
             self.world.detect(domain, pairs);
         if (sort) sort_periodic_pairs(pairs);
     }
-    return periodic_result<Dim>(pairs);
+    return periodic_result<Dim, std::uint64_t>(pairs);
 }
 
 template <std::floating_point Real, int Dim>
@@ -79,9 +89,10 @@ void set_filter(WorldHandle<Real, Dim>& self, py::handle ids, py::handle categor
 }
 
 template <std::floating_point Real, int Dim>
-py::array_t<Real> box_of(const WorldHandle<Real, Dim>& self, BoxId id) {
+py::array_t<Real> box_of(const WorldHandle<Real, Dim>& self, py::handle id) {
+    const BoxId key = single_id(id, "id");
     const BusyScope busy(self.busy, "this World");
-    const Box<Real, Dim> box = self.world.box(id);
+    const Box<Real, Dim> box = self.world.box(key);
     py::array_t<Real> array({py::ssize_t{2}, py::ssize_t{Dim}});
     std::memcpy(array.mutable_data(), &box, sizeof box);
     return array;
@@ -127,9 +138,11 @@ void bind_world(py::module_& module) {
                  self.world.clear();
              })
         .def("contains",
-             [](const Handle& self, BoxId id) {
+             [](const Handle& self, py::handle id) {
+                 // Membership: anything that cannot be an id is simply not in the world.
+                 const std::optional<BoxId> key = id_if_valid(id);
                  const BusyScope busy(self.busy, "this World");
-                 return self.world.contains(id);
+                 return key.has_value() && self.world.contains(*key);
              })
         .def("box", &box_of<Real, Dim>)
         .def("size",
@@ -137,25 +150,26 @@ void bind_world(py::module_& module) {
                  const BusyScope busy(self.busy, "this World");
                  return self.world.size();
              })
-        .def("detect", &detect<Real, Dim>, py::arg("sort") = false)
+        .def("detect", &detect<Real, Dim>, py::arg("sort") = false, py::arg("out") = py::none())
         .def("detect_periodic", &detect_periodic<Real, Dim>, py::arg("lo"), py::arg("hi"), py::arg("axes") = py::none(),
              py::arg("sort") = false)
         .def_property_readonly("begun",
                                [](const Handle& self) {
                                    const BusyScope busy(self.busy, "this World");
-                                   return pair_array_copy(self.checked_events().begun());
+                                   return pair_array_copy<std::uint64_t>(self.checked_events().begun());
                                })
         .def_property_readonly("ended",
                                [](const Handle& self) {
                                    const BusyScope busy(self.busy, "this World");
-                                   return pair_array_copy(self.checked_events().ended());
+                                   return pair_array_copy<std::uint64_t>(self.checked_events().ended());
                                })
         .def("set_filter", &set_filter<Real, Dim>, py::arg("ids"), py::arg("categories") = py::none(),
              py::arg("masks") = py::none())
         .def("filter",
-             [](const Handle& self, BoxId id) {
+             [](const Handle& self, py::handle id) {
+                 const BoxId key = single_id(id, "id");
                  const BusyScope busy(self.busy, "this World");
-                 const Filter filter = self.world.filter(id);
+                 const Filter filter = self.world.filter(key);
                  return py::make_tuple(filter.category, filter.mask);
              })
         .def("set_static",
@@ -165,9 +179,10 @@ void bind_world(py::module_& module) {
                  self.world.set_static(id_input.ids, is_static);
              })
         .def("is_static",
-             [](const Handle& self, BoxId id) {
+             [](const Handle& self, py::handle id) {
+                 const BoxId key = single_id(id, "id");
                  const BusyScope busy(self.busy, "this World");
-                 return self.world.is_static(id);
+                 return self.world.is_static(key);
              })
         .def_property_readonly("stats",
                                [](const Handle& self) {

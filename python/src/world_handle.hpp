@@ -36,6 +36,9 @@ struct WorldHandle {
     World<Real, Dim> world;
     std::unique_ptr<PairEvents> events;
     std::size_t last_pair_count = 0;
+    /// The pairs of the detections that write into the caller's buffer (out=): kept from call
+    /// to call, so that its pages stay mapped, as a C++ caller's reused vector.
+    std::vector<Pair> reused;
     /// Mutable: reads take it too, since a detection in another thread changes what they read.
     mutable BusyFlag busy;
 };

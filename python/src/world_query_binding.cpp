@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "arrays.hpp"
+#include "ray_arrays.hpp"
 #include "world_handle.hpp"
 
 namespace smb::python {
@@ -15,7 +16,7 @@ namespace smb::python {
 namespace {
 
 template <std::floating_point Real, int Dim>
-py::array_t<std::int64_t> query_box(WorldHandle<Real, Dim>& self, py::handle box) {
+py::array_t<std::uint64_t> query_box(WorldHandle<Real, Dim>& self, py::handle box) {
     const Box<Real, Dim> query = single_box<Real, Dim>(box, "box");
     const BusyScope busy(self.busy, "this World");
     std::vector<BoxId> ids;
@@ -24,11 +25,11 @@ py::array_t<std::int64_t> query_box(WorldHandle<Real, Dim>& self, py::handle box
         self.world.query(query, ids);
         std::sort(ids.begin(), ids.end());
     }
-    return id_result(std::move(ids));
+    return id_result<std::uint64_t>(std::move(ids));
 }
 
 template <std::floating_point Real, int Dim>
-py::array_t<std::int64_t> query_batch(WorldHandle<Real, Dim>& self, py::handle boxes) {
+py::array_t<std::uint64_t> query_batch(WorldHandle<Real, Dim>& self, py::handle boxes) {
     const auto queries = box_array<Real, Dim>(boxes, "boxes");
     const BusyScope busy(self.busy, "this World");
     std::vector<QueryHit> hits;
@@ -37,35 +38,16 @@ py::array_t<std::int64_t> query_batch(WorldHandle<Real, Dim>& self, py::handle b
         self.world.query(queries.boxes, hits);
         std::sort(hits.begin(), hits.end());
     }
-    py::array_t<std::int64_t> array({static_cast<py::ssize_t>(hits.size()), py::ssize_t{2}});
-    auto view = array.mutable_unchecked<2>();
-    for (std::size_t i = 0; i < hits.size(); ++i) {
-        const auto row = static_cast<py::ssize_t>(i);
-        view(row, 0) = static_cast<std::int64_t>(hits[i].query);
-        view(row, 1) = static_cast<std::int64_t>(hits[i].id);
-    }
-    return array;
+    return query_hit_array<std::uint64_t>(hits);
 }
 
 template <std::floating_point Real, int Dim>
 py::tuple cast_ray(WorldHandle<Real, Dim>& self, py::handle origin, py::handle direction, double max_t, bool all) {
-    Ray<Real, Dim> ray;
-    ray.origin = coordinates<Real, Dim>(origin, "origin");
-    ray.direction = coordinates<Real, Dim>(direction, "direction");
-    ray.max_t = static_cast<Real>(max_t);
-    if (std::isfinite(max_t) && static_cast<double>(ray.max_t) != max_t)
-        throw py::type_error("max_t does not convert exactly to the world's dtype");
+    const auto ray = make_ray<Real, Dim>(origin, direction, max_t);
     const BusyScope busy(self.busy, "this World");
     std::vector<RayHit<Real>> hits;
     self.world.cast_ray(ray, all ? RayHits::all : RayHits::nearest, hits);
-    const auto count = static_cast<py::ssize_t>(hits.size());
-    py::array_t<std::int64_t> ids(count);
-    py::array_t<Real> ts(count);
-    for (py::ssize_t i = 0; i < count; ++i) {
-        ids.mutable_data()[i] = static_cast<std::int64_t>(hits[static_cast<std::size_t>(i)].id);
-        ts.mutable_data()[i] = hits[static_cast<std::size_t>(i)].t;
-    }
-    return py::make_tuple(ids, ts);
+    return ray_result<std::uint64_t>(hits);
 }
 
 template <std::floating_point Real, int Dim>

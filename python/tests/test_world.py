@@ -233,10 +233,11 @@ def test_large_ids_and_single_id():
     big = np.array([(1 << 63) - 1, (1 << 62)], dtype=np.uint64)
     world.insert(big, np.zeros((2, 2, 2)))
     np.testing.assert_array_equal(world.detect(), [[1 << 62, (1 << 63) - 1]])
-    with pytest.raises(ValueError, match="largest"):
-        world.insert(np.array([1 << 63], dtype=np.uint64), np.zeros((1, 2, 2)))
+    world.insert(np.array([1 << 63], dtype=np.uint64), np.zeros((1, 2, 2)))
+    with pytest.raises(ValueError, match="negative"):
+        world.insert(-7, np.zeros((1, 4)))
     world.insert(7, np.zeros((1, 4)))
-    assert 7 in world and len(world) == 3
+    assert 7 in world and len(world) == 4
     world.remove(7)
     assert 7 not in world
 
