@@ -2,6 +2,28 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
+# `cmake --install` may follow a build of one target (scripts/run.sh builds the tool alone):
+# the targets it installs are built first, so that it never misses a file.
+set(smb_installed_targets smb)
+foreach(target smb_bullet smb_mpi smb_cli)
+  if(TARGET ${target})
+    list(APPEND smb_installed_targets ${target})
+  endif()
+endforeach()
+install(CODE "
+  set(smb_config_arguments)
+  if(CMAKE_INSTALL_CONFIG_NAME)
+    set(smb_config_arguments --config \"\${CMAKE_INSTALL_CONFIG_NAME}\")
+  endif()
+  execute_process(
+    COMMAND \"${CMAKE_COMMAND}\" --build \"${CMAKE_BINARY_DIR}\" --target ${smb_installed_targets}
+            \${smb_config_arguments}
+    RESULT_VARIABLE smb_build_result)
+  if(NOT smb_build_result EQUAL 0)
+    message(FATAL_ERROR \"building what the install needs (${smb_installed_targets}) failed\")
+  endif()
+")
+
 install(TARGETS smb EXPORT smbTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -13,6 +35,12 @@ if(TARGET smb_bullet)
   set(SMB_HAS_BULLET ON)
 else()
   set(SMB_HAS_BULLET OFF)
+endif()
+if(TARGET smb_bullet_dynamics)
+  install(TARGETS smb_bullet_dynamics EXPORT smbTargets)
+  set(SMB_HAS_BULLET_DYNAMICS ON)
+else()
+  set(SMB_HAS_BULLET_DYNAMICS OFF)
 endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/smb DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(FILES ${PROJECT_BINARY_DIR}/generated/include/smb/version.hpp

@@ -39,6 +39,14 @@ void World<Real, Dim>::set_filter(std::span<const BoxId> ids, std::span<const Fi
 }
 
 template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_filter(std::span<const BoxId> ids, const Filter& filter) {
+    auto& state = this->state();
+    const auto& store = state.store();
+    for (const BoxId id : ids) (void)store.slot_of(id);  // throws before any change
+    for (const BoxId id : ids) state.filters().set_filter(store.slot_of(id), filter, store.slot_count());
+}
+
+template <std::floating_point Real, int Dim>
 Filter World<Real, Dim>::filter(BoxId id) const {
     if (!state_) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
     return state_->filters().filter_at(state_->store().slot_of(id));
@@ -117,6 +125,7 @@ DetectStats Detector<Real, Dim>::detect(std::span<const Box<Real, Dim>> boxes, c
 #define SMB_INSTANTIATE(Real, Dim)                                                                          \
     template void World<Real, Dim>::set_filter(BoxId, const Filter&);                                       \
     template void World<Real, Dim>::set_filter(std::span<const BoxId>, std::span<const Filter>);            \
+    template void World<Real, Dim>::set_filter(std::span<const BoxId>, const Filter&);                      \
     template Filter World<Real, Dim>::filter(BoxId) const;                                                  \
     template void World<Real, Dim>::set_static(BoxId, bool);                                                \
     template void World<Real, Dim>::set_static(std::span<const BoxId>, bool);                               \

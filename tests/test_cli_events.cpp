@@ -10,6 +10,8 @@
 #include <array>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <random>
 #include <set>
 #include <sstream>
@@ -95,10 +97,25 @@ TEST(CliEvents, FirstFrameWithoutPairsAndLateFirstNumber) {
     EXPECT_EQ(single.out, "frame,a,b,event\n");
 }
 
+/// Body `k`'s id in the scenes with ids across the whole 64-bit range: the edges, where a
+/// narrowing or packing of ids would show, then k times an odd constant.
+BoxId wide_id(std::size_t k) {
+    constexpr BoxId edges[] = {std::numeric_limits<BoxId>::max(),
+                               BoxId{1} << 32,
+                               (BoxId{1} << 32) - 1,
+                               BoxId{1} << 63,
+                               (BoxId{1} << 63) - 1,
+                               (BoxId{1} << 32) + 1,
+                               0,
+                               7};
+    return k < std::size(edges) ? edges[k] : static_cast<BoxId>(k) * 0x9E3779B97F4A7C15u;
+}
+
 TEST(CliEvents, RandomScenesMatchBruteForce) {
     std::mt19937_64 random(31);
     std::uniform_real_distribution<double> unit(0, 1);
     for (int trial = 0; trial < 4; ++trial) {
+        const bool wide = trial >= 2;  // ids across the whole 64-bit range
         TempFolder folder;
         std::ostringstream scene;
         scene << header_2d;
@@ -115,8 +132,8 @@ TEST(CliEvents, RandomScenesMatchBruteForce) {
                 c[1] += 0.3 * (unit(random) - 0.5);
                 // Sides on a grid of quarters, so that some boxes touch exactly.
                 const double half = 0.25 * static_cast<double>(1 + static_cast<int>(4 * unit(random)));
-                scene << number << ',' << id << ',' << c[0] - half << ',' << c[1] - half << ',' << c[0] + half << ','
-                      << c[1] + half << '\n';
+                scene << number << ',' << (wide ? wide_id(id) : id) << ',' << c[0] - half << ',' << c[1] - half << ','
+                      << c[0] + half << ',' << c[1] + half << '\n';
             }
         }
         write_file(folder / "scene.csv", scene.str());

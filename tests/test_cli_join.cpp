@@ -76,6 +76,32 @@ TEST(CliJoin, FramesOnOneSideSkippedFramesAndSharedIds) {
     EXPECT_EQ(folder.entry_count(), 3u);  // no temporary left behind
 }
 
+TEST(CliJoin, IdsAcrossTheWholeRange) {
+    TempFolder folder;
+    // Every left box overlaps every right box; the sides share 2^64 - 1.
+    write_file(folder / "left.csv", std::string(header_2d) +
+                                        "0,18446744073709551615,0,0,1,1\n"
+                                        "0,4294967296,0,0,1,1\n"
+                                        "0,0,0,0,1,1\n");
+    write_file(folder / "right.csv", std::string(header_2d) +
+                                         "0,4294967295,1,1,2,2\n"
+                                         "0,9223372036854775808,0.5,0.5,2,2\n"
+                                         "0,18446744073709551615,0,0,1,1\n");
+    const auto result = run_smb(folder, {"join", "--left", "left.csv", "--right", "right.csv"});
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_EQ(result.out,
+              "frame,left,right\n"
+              "0,0,4294967295\n"
+              "0,0,9223372036854775808\n"
+              "0,0,18446744073709551615\n"
+              "0,4294967296,4294967295\n"
+              "0,4294967296,9223372036854775808\n"
+              "0,4294967296,18446744073709551615\n"
+              "0,18446744073709551615,4294967295\n"
+              "0,18446744073709551615,9223372036854775808\n"
+              "0,18446744073709551615,18446744073709551615\n");
+}
+
 TEST(CliJoin, EmptyScenesGiveTheHeaderOnly) {
     TempFolder folder;
     write_file(folder / "left.csv", header_3d);

@@ -137,5 +137,25 @@ TEST(CliMessages, OutputOfNormalRunsHasNoSixDecimalNumbers) {
     EXPECT_FALSE(has_fixed_six_decimals(run.out)) << run.out;
 }
 
+TEST(CliMessages, AnUnknownHeaderIsShownEscapedAndCut) {
+    TempFolder folder;
+    // Terminal escapes, a NUL and a long tail: none of it may reach the terminal as it is.
+    std::string header = "\x1b[2J\x1b]0;title\aframe";  // \a: the terminal bell, 0x07
+    header += '\0';
+    header += ",id" + std::string(5000, 'x') + "\n0,1,0,0,1,1\n";
+    write_file(folder / "scene.csv", header);
+    const auto scene = run_smb(folder, {"pairs", "-i", "scene.csv"});
+    const auto pairs = run_smb(folder, {"join", "--left", "scene.csv", "--right", "scene.csv"});
+    for (const auto* result : {&scene, &pairs}) {
+        EXPECT_EQ(result->status, 1) << result->err;
+        EXPECT_TRUE(contains(result->err, "unknown header '\\x1b[2J\\x1b]0;title\\x07frame\\x00,id")) << result->err;
+        for (const char c : result->err) {
+            const auto byte = static_cast<unsigned char>(c);
+            EXPECT_TRUE(c == '\n' || (byte >= 0x20 && byte < 0x7f)) << "byte " << int(byte) << " in " << result->err;
+        }
+        EXPECT_LT(result->err.size(), 400u) << result->err;
+    }
+}
+
 }  // namespace
 }  // namespace smb::cli_test

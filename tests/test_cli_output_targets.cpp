@@ -6,13 +6,19 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <fmt/format.h>
 
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <csignal>
+#include <cstring>
 #include <string>
 #include <thread>
 
@@ -226,15 +232,106 @@ TEST(CliOutputTargets, FullDeviceReportsTheWriteError) {
     write_file(folder / "scene.csv", scene_2d);
     const fs::path full_device = character_device(folder, "full", 7);
     if (full_device.empty()) GTEST_SKIP() << "no character device to write safely";
+    const std::string full = ": " + std::string(std::strerror(ENOSPC));  // ": No space left on device"
     const auto pairs = run_smb(folder, pairs_into(full_device.string()));
     EXPECT_EQ(pairs.status, 1);
-    EXPECT_NE(pairs.err.find("smb: error: writing failed for '" + full_device.string() + "'"), std::string::npos)
+    EXPECT_NE(pairs.err.find("smb: error: writing failed for '" + full_device.string() + "'" + full), std::string::npos)
         << pairs.err;
     EXPECT_TRUE(fs::is_character_file(fs::symlink_status(full_device)));
     const auto generate = run_smb(folder, {"generate", "-n", "5", "-s", "1", "-o", full_device.string()});
     EXPECT_EQ(generate.status, 1);
-    EXPECT_NE(generate.err.find("smb: error: "), std::string::npos) << generate.err;
+    EXPECT_NE(generate.err.find("smb: error: writing failed for '" + full_device.string() + "'" + full),
+              std::string::npos)
+        << generate.err;
     EXPECT_TRUE(fs::is_character_file(fs::symlink_status(full_device)));
+    // Standard output on the full device: each command that prints says why it failed.
+    for (const std::vector<std::string>& arguments :
+         {std::vector<std::string>{"run", "-n", "100", "-s", "2", "--json"},
+          std::vector<std::string>{"run", "-n", "100", "-s", "2"}, pairs_into("-"),
+          std::vector<std::string>{"generate", "-n", "5", "-s", "1"}}) {
+        const auto result = run_smb_with(folder, arguments, {}, full_device);
+        EXPECT_EQ(result.status, 1) << arguments[0];
+        EXPECT_NE(result.err.find("smb: error: writing to standard output failed" + full), std::string::npos)
+            << arguments[0] << ": " << result.err;
+    }
+}
+
+/// Starts smb with `arguments` in `folder`, its standard input the returned descriptor (the
+/// write end of a pipe), its output to the test's standard error.
+pid_t start_smb(const TempFolder& folder, const std::vector<std::string>& arguments, int& input) {
+    int ends[2];
+    if (::pipe(ends) != 0) return -1;
+    const pid_t child = ::fork();
+    if (child == 0) {
+        const rlimit no_core{0, 0};  // the signals that dump core leave no core in the folder
+        ::setrlimit(RLIMIT_CORE, &no_core);
+        ::signal(SIGPIPE, SIG_DFL);  // ignored by the test, which an exec would keep
+        ::dup2(ends[0], STDIN_FILENO);
+        ::close(ends[0]);
+        ::close(ends[1]);
+        if (::chdir(folder.path().c_str()) != 0) ::_exit(127);
+        std::vector<char*> argv;
+        std::string program = SMB_CLI_PATH;
+        argv.push_back(program.data());
+        std::vector<std::string> copies = arguments;
+        for (auto& argument : copies) argv.push_back(argument.data());
+        argv.push_back(nullptr);
+        ::execv(program.c_str(), argv.data());
+        ::_exit(127);
+    }
+    ::close(ends[0]);
+    input = ends[1];
+    return child;
+}
+
+/// The names in `folder` that start with `prefix`.
+std::vector<std::string> names_starting(const TempFolder& folder, const std::string& prefix) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder.path())) {
+        const std::string name = entry.path().filename().string();
+        if (name.starts_with(prefix)) names.push_back(name);
+    }
+    return names;
+}
+
+TEST(CliOutputTargets, ASignalMidOutputLeavesNoPartialFile) {
+    // The first frame, longer than what the tool reads at once (1 MiB), and not finished: the
+    // tool has read the header, opened its output and waits for the rest of the frame.
+    std::string start = "frame,id,xmin,ymin,xmax,ymax\n";
+    for (int id = 0; start.size() < (std::size_t{3} << 19); ++id)
+        start += fmt::format("0,{},{},0,{}.5,1\n", id, 2 * id, 2 * id);
+    const auto previous_pipe_action = ::signal(SIGPIPE, SIG_IGN);  // a tool that died early: EPIPE
+    for (const int signal : {SIGTERM, SIGINT, SIGHUP, SIGSEGV, SIGABRT}) {
+        TempFolder folder;
+        write_file(folder / "out.csv", "the previous output\n");
+        int input = -1;
+        const pid_t child = start_smb(folder, {"pairs", "-i", "-", "-o", "out.csv"}, input);
+        ASSERT_GT(child, 0);
+        for (std::size_t written = 0; written < start.size();) {
+            const ssize_t more = ::write(input, start.data() + written, start.size() - written);
+            ASSERT_GT(more, 0) << std::strerror(errno);
+            written += static_cast<std::size_t>(more);
+        }
+        bool partial = false;
+        for (int wait = 0; wait < 1000 && !partial; ++wait) {
+            partial = !names_starting(folder, ".out.csv.smb-partial-").empty();
+            if (!partial) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        EXPECT_TRUE(partial) << "signal " << signal << ": no partial file appeared";
+        ::kill(child, signal);
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        ::close(input);
+        // The signal ends the program as it would have without the clean-up; under a sanitizer,
+        // whose handler reports a SIGSEGV and exits, with a failure status.
+        const bool by_signal = WIFSIGNALED(status) && WTERMSIG(status) == signal;
+        const bool by_sanitizer = signal == SIGSEGV && WIFEXITED(status) && WEXITSTATUS(status) != 0;
+        EXPECT_TRUE(by_signal || by_sanitizer) << "signal " << signal << ", status " << status;
+        EXPECT_TRUE(names_starting(folder, ".out.csv").empty()) << "signal " << signal;
+        EXPECT_EQ(read_file(folder / "out.csv"), "the previous output\n") << "signal " << signal;
+        EXPECT_EQ(folder.entry_count(), 1u) << "signal " << signal;
+    }
+    ::signal(SIGPIPE, previous_pipe_action);
 }
 
 TEST(CliOutputTargets, FolderIsRefusedByName) {

@@ -17,16 +17,32 @@
 namespace smb::cli_test {
 namespace {
 
+/// Id `k` of a scene with ids across the whole 64-bit range: the edges first (2^32 packed beside
+/// an index reached the bit that marks translated boxes), then k times an odd constant.
+BoxId wide_id(BoxId k) {
+    constexpr BoxId edges[] = {7,
+                               BoxId{1} << 32,
+                               ~BoxId{0},
+                               (BoxId{1} << 32) - 1,
+                               BoxId{1} << 63,
+                               (BoxId{1} << 63) - 1,
+                               (BoxId{1} << 32) + 1,
+                               BoxId{1} << 31,
+                               0};
+    return k < std::size(edges) ? edges[k] : k * 0x9E3779B97F4A7C15u;
+}
+
 /// A scene CSV of `frames` frames of boxes moving across [0, side) on every axis (centres wrapped
-/// on the periodic ones), some removed and inserted between frames.
+/// on the periodic ones), some removed and inserted between frames; ids from wide_id where `wide`.
 template <int Dim>
-std::string random_scene(test::Random& random, const PeriodicDomain<double, Dim>& domain, double side, int frames) {
+std::string random_scene(test::Random& random, const PeriodicDomain<double, Dim>& domain, double side, int frames,
+                         bool wide = false) {
     std::string text = Dim == 2 ? "frame,id,xmin,ymin,xmax,ymax\n" : "frame,id,xmin,ymin,zmin,xmax,ymax,zmax\n";
     std::vector<Box<double, Dim>> boxes;
     std::vector<BoxId> ids;
     for (BoxId id = 0; id < 150; ++id) {
         boxes.push_back(test::particle_box<double, Dim>(random, side, 0.3, 2.5));
-        ids.push_back(id * 7);
+        ids.push_back(wide ? wide_id(id) : id * 7);
     }
     for (int frame = 0; frame < frames; ++frame) {
         for (std::size_t i = 0; i < boxes.size(); ++i) {
@@ -39,7 +55,7 @@ std::string random_scene(test::Random& random, const PeriodicDomain<double, Dim>
         boxes.erase(boxes.begin() + frame);
         ids.erase(ids.begin() + frame);
         boxes.push_back(test::particle_box<double, Dim>(random, side, 0.3, 2.5));
-        ids.push_back(100000 + static_cast<BoxId>(frame));
+        ids.push_back(wide ? wide_id(100000 + static_cast<BoxId>(frame)) : 100000 + static_cast<BoxId>(frame));
     }
     return text;
 }
@@ -87,6 +103,51 @@ TEST(CliPeriodic, ThreeDimensionsEveryAxisPeriodic) {
     const std::string written = read_file(folder.path() / "pairs.csv");
     EXPECT_EQ(written, expected_csv<3>(scene, domain));
     EXPECT_NE(written.find(",-1"), std::string::npos) << "no pair across the boundary";
+}
+
+TEST(CliPeriodic, IdsAcrossTheWholeRange) {
+    TempFolder folder;
+    // The three boxes of the report: (7, 2^32) was lost, or the run crashed without the third.
+    write_file(folder.path() / "two.csv", "frame,id,xmin,ymin,xmax,ymax\n0,7,0,0,1,1\n0,4294967296,1,0,2,1\n");
+    const auto two = run_smb(folder, {"pairs", "--periodic", "0:12,0:12", "-i", "two.csv", "-o", "two.out"});
+    ASSERT_EQ(two.status, 0) << two.err;
+    EXPECT_EQ(read_file(folder.path() / "two.out"), "frame,a,b,sx,sy\n0,7,4294967296,0,0\n");
+    write_file(folder.path() / "three.csv",
+               "frame,id,xmin,ymin,xmax,ymax\n0,7,0,0,1,1\n0,4294967296,1,0,2,1\n"
+               "0,18446744073709551615,11.5,0,12,1\n");
+    const auto three = run_smb(folder, {"pairs", "--periodic", "0:12,0:12", "-i", "three.csv"});
+    ASSERT_EQ(three.status, 0) << three.err;
+    EXPECT_EQ(three.out, "frame,a,b,sx,sy\n0,7,4294967296,0,0\n0,7,18446744073709551615,-1,0\n");
+    // Random scenes over frames, the ids spread over the range.
+    test::Random random(3);
+    PeriodicDomain<double, 3> domain;
+    for (int k = 0; k < 3; ++k) domain.wrap(k, 0, 10);
+    const std::string scene = random_scene<3>(random, domain, 10, 5, true);
+    write_file(folder.path() / "scene.csv", scene);
+    const auto result = run_smb(folder, {"pairs", "--periodic", "0:10,0:10,0:10", "-i", "scene.csv"});
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_EQ(result.out, expected_csv<3>(scene, domain));
+    EXPECT_EQ(folder.entry_count(), 4u);  // the three scenes and two.out: no partial file left
+}
+
+TEST(CliPeriodic, BoundsAreDecimalNumbersAsInAScene) {
+    TempFolder folder;
+    write_file(folder.path() / "scene.csv", "frame,id,xmin,ymin,xmax,ymax\n0,1,0,0,1e-321,1\n0,2,1e-321,0,2e-321,1\n");
+    for (const std::string spec : {"0:0x3,-", "0:+3,-", "+0:3,-", "0x0:3,-", "0:3e,-", "0: 3 3,-"}) {
+        const auto result = run_smb(folder, {"pairs", "--periodic", spec, "-i", "scene.csv"});
+        EXPECT_EQ(result.status, 64) << spec << ": " << result.err;
+        EXPECT_NE(result.err.find("--periodic"), std::string::npos) << result.err;
+    }
+    // Subnormal bounds are numbers like any other.
+    const auto subnormal = run_smb(folder, {"pairs", "--periodic", "1e-320:2e-320,-", "-i", "scene.csv"});
+    EXPECT_EQ(subnormal.status, 0) << subnormal.err;
+    EXPECT_EQ(subnormal.out, "frame,a,b,sx,sy\n0,1,2,0,0\n");
+    // A period that overflows is refused before any frame, its bounds in shortest form.
+    const auto wide = run_smb(folder, {"pairs", "--periodic", "-1e308:1e308,-", "-i", "scene.csv"});
+    EXPECT_EQ(wide.status, 64) << wide.err;
+    EXPECT_NE(wide.err.find("-1e+308:1e+308"), std::string::npos) << wide.err;
+    EXPECT_NE(wide.err.find("overflows"), std::string::npos) << wide.err;
+    EXPECT_LT(wide.err.size(), 400u) << wide.err;
 }
 
 TEST(CliPeriodic, BadArgumentsExit64) {

@@ -398,5 +398,27 @@ TYPED_TEST(PeriodicDetectorTest, APairThatCrossesTheBoundaryStaysOneContact) {
     EXPECT_EQ(events.ended().size(), 1u);
 }
 
+TEST(PeriodicDomainCheck, MessagesGiveTheBoundsInShortestForm) {
+    auto message = [](const PeriodicDomain<double, 3>& domain) {
+        try {
+            check_domain(domain);
+        } catch (const ArgumentError& error) {
+            return std::string(error.what());
+        }
+        return std::string("no error");
+    };
+    // A period that overflows a double: said so, with the bounds as written, not 300 digits.
+    const std::string wide = message(PeriodicDomain<double, 3>{}.wrap(0, -1e308, 1e308));
+    EXPECT_NE(wide.find("[-1e+308, 1e+308)"), std::string::npos) << wide;
+    EXPECT_NE(wide.find("overflows"), std::string::npos) << wide;
+    EXPECT_LT(wide.size(), 160u) << wide;
+    const std::string empty = message(PeriodicDomain<double, 3>{}.wrap(1, 0.1, 0.1));
+    EXPECT_NE(empty.find("the y interval [0.1, 0.1) is empty"), std::string::npos) << empty;
+    const std::string tiny = message(PeriodicDomain<double, 3>{}.wrap(2, 1e-6, 1e-320));
+    EXPECT_NE(tiny.find("[1e-06, 1e-320)"), std::string::npos) << tiny;
+    // Subnormal bounds are bounds like any other.
+    EXPECT_EQ(message(PeriodicDomain<double, 3>{}.wrap(0, 1e-320, 2e-320)), "no error");
+}
+
 }  // namespace
 }  // namespace smb::test

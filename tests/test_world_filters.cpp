@@ -458,5 +458,30 @@ TEST(WorldFilters, StaticsSpanningAlmostAllOfDoubleStillPair) {
     EXPECT_EQ(pairs, (std::vector<Pair>{{1, 10}, {2, 11}, {3, 12}}));
 }
 
+TEST(WorldFilters, OneFilterForManyIdsAllOrNothing) {
+    World2d world;
+    for (BoxId id = 0; id < 6; ++id) world.insert(id, Box2d{{0, 0}, {1, 1}});
+    const std::vector<BoxId> debris = {1, 3, 5};
+    world.set_filter(debris, Filter{4, ~4u});  // debris never meets debris
+    for (BoxId id = 0; id < 6; ++id) EXPECT_EQ(world.filter(id), (id % 2 ? Filter{4, ~4u} : Filter{})) << id;
+    std::vector<Pair> pairs;
+    world.detect(pairs);
+    sort_pairs(pairs);
+    std::vector<Pair> expected;
+    for (BoxId a = 0; a < 6; ++a) {
+        for (BoxId b = a + 1; b < 6; ++b) {
+            if (a % 2 == 0 || b % 2 == 0) expected.push_back({a, b});
+        }
+    }
+    EXPECT_EQ(pairs, expected);
+    // An unknown id among them: no filter changes.
+    const std::vector<BoxId> with_unknown = {0, 2, 9};
+    EXPECT_THROW(world.set_filter(with_unknown, Filter{8, 8}), UnknownIdError);
+    for (BoxId id = 0; id < 6; ++id) EXPECT_EQ(world.filter(id), (id % 2 ? Filter{4, ~4u} : Filter{})) << id;
+    world.detect(pairs);
+    sort_pairs(pairs);
+    EXPECT_EQ(pairs, expected);
+}
+
 }  // namespace
 }  // namespace smb::test

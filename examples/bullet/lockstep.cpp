@@ -11,6 +11,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <chrono>
 #include <iterator>
 #include <memory>
 #include <random>
@@ -184,6 +185,7 @@ ContactNames contacts(btCollisionWorld& world, btCollisionObject& probe) {
 
 int main(int argc, char** argv) {
     CLI::App app{"A Bullet pile on btDbvtBroadphase with a mirror on smb's broad phase, compared at every step"};
+    app.option_defaults()->always_capture_default();  // --help shows each option's default
     smb::examples::PileSettings settings;
     int steps = 300;
     int queries = 20;
@@ -208,6 +210,7 @@ int main(int argc, char** argv) {
     std::size_t near_only_dbvt = 0;
     std::size_t hits_outside_box = 0;
     std::vector<const btCollisionObject*> objects_by_name;
+    auto last_report = std::chrono::steady_clock::now();
     for (int step = 0; step <= steps; ++step) {
         if (step > 0) scene.step();
         btCollisionWorld& source = scene.world();
@@ -282,6 +285,12 @@ int main(int argc, char** argv) {
             }
             hits_compared += expected.size() + dbvt_contacts.touching.size();
             near_only_dbvt += dbvt_contacts.near.size() - smb_contacts.near.size();
+        }
+        // A run takes tens of seconds: say how far it got, on standard error, about every 2 s.
+        if (const auto now = std::chrono::steady_clock::now(); now - last_report >= std::chrono::seconds(2)) {
+            fmt::print(stderr, "smb_bullet_lockstep: step {} of {}, {} pairs checked so far\n", step, steps,
+                       pairs_checked);
+            last_report = now;
         }
     }
     const smb::examples::PileMeasure measure = scene.measure();

@@ -28,6 +28,7 @@ std::unique_ptr<btBroadphaseInterface> make_broadphase(const std::string& name) 
 
 int main(int argc, char** argv) {
     CLI::App app{"A Bullet pile of boxes and spheres with a kinematic plough, on smb's broad phase"};
+    app.option_defaults()->always_capture_default();  // --help shows each option's default
     smb::examples::PileSettings settings;
     int steps = 600;
     int report_every = 100;

@@ -3,7 +3,7 @@
 """Draws what smb_dem wrote: the energies against time, and the final packing.
 
     /usr/bin/python3 examples/dem/plot_dem.py --energy energy.csv --particles particles.csv \
-        --out docs/dem
+        --prefix pour_ --out docs/dem
 
 writes <out>/<prefix>energy.png and, given --particles, <out>/<prefix>packing.png (numpy and
 matplotlib: Debian's python3-numpy, python3-matplotlib).

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <concepts>
 #include <cstdint>
@@ -81,6 +82,16 @@ inline void sort_periodic_pairs(std::vector<PeriodicPair>& pairs) {
     });
 }
 
+namespace detail {
+/// A bound in a message: the shortest text that reads back to the same value.
+template <std::floating_point Real>
+[[nodiscard]] std::string bound_text(Real value) {
+    char text[64];
+    const std::to_chars_result written = std::to_chars(text, text + sizeof text, value);
+    return std::string(text, written.ptr);
+}
+}  // namespace detail
+
 /// Throws ArgumentError unless every periodic axis has finite lo < hi, with a period that is
 /// finite and not zero in double.
 template <std::floating_point Real, int Dim>
@@ -89,13 +100,12 @@ void check_domain(const PeriodicDomain<Real, Dim>& domain) {
         if (!domain.periodic[static_cast<std::size_t>(k)]) continue;
         const Real lo = domain.lo[static_cast<std::size_t>(k)];
         const Real hi = domain.hi[static_cast<std::size_t>(k)];
-        const std::string axis(1, "xyz"[k]);
-        if (!std::isfinite(lo) || !std::isfinite(hi))
-            throw ArgumentError("periodic domain: the " + axis + " interval [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + ") has a NaN or infinite bound");
-        if (!(lo < hi) || !std::isfinite(domain.period(k)))
-            throw ArgumentError("periodic domain: the " + axis + " interval [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + ") is empty (lo must be below hi)");
+        const std::string interval = "periodic domain: the " + std::string(1, "xyz"[k]) + " interval [" +
+                                     detail::bound_text(lo) + ", " + detail::bound_text(hi) + ")";
+        if (!std::isfinite(lo) || !std::isfinite(hi)) throw ArgumentError(interval + " has a NaN or infinite bound");
+        if (!(lo < hi)) throw ArgumentError(interval + " is empty (lo must be below hi)");
+        if (!std::isfinite(domain.period(k)))
+            throw ArgumentError(interval + " is too wide: its period hi - lo overflows a double");
     }
 }
 

@@ -149,6 +149,8 @@ public:
     void set_filter(BoxId id, const Filter& filter);
     /// Sets many filters at once (all or none); an id named twice gets the last of its filters.
     void set_filter(std::span<const BoxId> ids, std::span<const Filter> filters);
+    /// Gives many boxes one filter at once (all or none), as set_static(ids, is_static).
+    void set_filter(std::span<const BoxId> ids, const Filter& filter);
     /// The filter of box `id`; throws UnknownIdError if absent.
     [[nodiscard]] Filter filter(BoxId id) const;
     /// Makes box `id` static (two static boxes are never paired; a static box that does not

@@ -9,6 +9,7 @@
 
 #include "axial_regions.hpp"
 #include "collective_checks.hpp"
+#include "core/shortest_number.hpp"
 #include "distributed_id_set.hpp"
 #include "exchange.hpp"
 #include "region_store.hpp"
@@ -34,7 +35,7 @@ public:
     DistributedState(MPI_Comm comm, const DistributedSettings& settings) : settings_(settings) {
         if (!(settings.rebalance_threshold >= 1)) {
             throw ArgumentError("DistributedSettings::rebalance_threshold must be at least 1, not " +
-                                std::to_string(settings.rebalance_threshold));
+                                smb::detail::shortest_number(settings.rebalance_threshold));
         }
         MPI_Comm_dup(comm, &comm_);
         MPI_Comm_rank(comm_, &rank_);

@@ -56,6 +56,8 @@ inline constexpr BoxId kTranslatedKey = BoxId{1} << 63;
 /// A packed key: the id above these bits, the index in them.
 inline constexpr int kIndexBits = 31;
 inline constexpr BoxId kIndexMask = (BoxId{1} << kIndexBits) - 1;
+/// The largest name a packed key holds: its bits end below kTranslatedKey.
+inline constexpr BoxId kLargestPackedName = ~BoxId{0} >> (kIndexBits + 1);
 
 template <std::floating_point Real, int Dim>
 class PeriodicImages {
@@ -85,7 +87,7 @@ public:
         const Axes axes = axes_of(domain);
         bool valid = true;
         packed_ = !names.empty();
-        BoxId largest_name = 0;
+        bool names_fit = true;
         bounds_.lo.fill(std::numeric_limits<Real>::infinity());
         bounds_.hi.fill(-std::numeric_limits<Real>::infinity());
         for (std::size_t i = 0; i < n_; ++i) {
@@ -101,8 +103,13 @@ public:
             }
             BoxId key = i;
             if (packed_) {
-                largest_name = std::max(largest_name, names[i]);
-                key |= names[i] << kIndexBits;
+                // A name above kLargestPackedName would reach kTranslatedKey (or past it) and
+                // pass for a translated box: its key is the index until packing is given up.
+                if (names[i] <= kLargestPackedName) {
+                    key |= names[i] << kIndexBits;
+                } else {
+                    names_fit = false;
+                }
             }
             if (plain) [[likely]] {
                 gathered_[i] = box;
@@ -118,7 +125,7 @@ public:
             for (int k = 0; k < Dim; ++k) valid &= std::isfinite(bounds_.lo[k]) && std::isfinite(bounds_.hi[k]);
         }
         if (!valid || !far_ok_) throw_first_invalid(boxes, names, domain);
-        if (packed_ && largest_name > (~BoxId{0} >> (kIndexBits + 1))) {
+        if (packed_ && !names_fit) {
             // An id too large to pack: keys are indices, and names are read from the array.
             packed_ = false;
             for (std::size_t i = 0; i < n_; ++i) {

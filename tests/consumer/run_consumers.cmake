@@ -46,13 +46,15 @@ run_step("run the find_package consumer" ${SCRATCH_DIR}/installed-build/consumer
 if(EXISTS ${SCRATCH_DIR}/installed-build/bullet_consumer)
   run_step("run the find_package consumer of smb::bullet" ${SCRATCH_DIR}/installed-build/bullet_consumer)
 endif()
+if(EXISTS ${SCRATCH_DIR}/installed-build/bullet_dynamics_consumer)
+  run_step("run the find_package consumer of smb::bullet_dynamics"
+    ${SCRATCH_DIR}/installed-build/bullet_dynamics_consumer)
+endif()
 
 run_step("configure the FetchContent consumer"
   ${CMAKE_COMMAND} -S ${CONSUMER_DIR}/fetched -B ${SCRATCH_DIR}/fetched-build
     -DCMAKE_BUILD_TYPE=Debug -DSMB_SOURCE_DIR=${SMB_SOURCE_DIR}
     -DFETCHCONTENT_FULLY_DISCONNECTED=ON
-    # The subproject's optional components are proven through the installed package above.
-    -DSMB_BUILD_BULLET=OFF -DSMB_BUILD_MPI=OFF
     ${compiler_args})
 run_step("build the FetchContent consumer"
   ${CMAKE_COMMAND} --build ${SCRATCH_DIR}/fetched-build --parallel 2)

@@ -219,6 +219,48 @@ TYPED_TEST(DistributedDetection, MostBoxesStillOnlyTheChangesTravel) {
     }
 }
 
+TYPED_TEST(DistributedDetection, IdsAtTheEdgesOfTheRange) {
+    // Where ids are hashed, packed or narrowed, the edges show: 2^32 next to 2^32 - 1, ids that
+    // differ only above bit 32, the top bit, 2^64 - 1. Their boxes overlap one another.
+    using BoxT = typename TypeParam::box_type;
+    constexpr BoxId top = std::numeric_limits<BoxId>::max();
+    const std::vector<BoxId> edges = {0,
+                                      1,
+                                      7,
+                                      BoxId{1} << 31,
+                                      (BoxId{1} << 32) - 1,
+                                      BoxId{1} << 32,
+                                      (BoxId{1} << 32) + 1,
+                                      (BoxId{1} << 32) + 7,
+                                      (BoxId{1} << 63) - 1,
+                                      BoxId{1} << 63,
+                                      (BoxId{1} << 63) + 1,
+                                      top - 1,
+                                      top};
+    for (PairHandOff hand_off : {PairHandOff::smaller_id_holder, PairHandOff::both_holders}) {
+        std::mt19937_64 engine(35);
+        Scene<BoxT> scene = random_scene<BoxT>(engine, scene_boxes, ranks_of());
+        std::set<BoxId> used(edges.begin(), edges.end());
+        for (std::size_t i = 0; i < scene.ids.size(); ++i) {
+            if (i < edges.size()) {
+                scene.ids[i] = edges[i];
+                scene.boxes[i] = random_box<BoxT>(engine, 0.0);
+                for (int k = 0; k < BoxT::dimension; ++k) scene.boxes[i].min[k] = 0.5f, scene.boxes[i].max[k] = 0.5f;
+                continue;
+            }
+            while (!used.insert(scene.ids[i]).second) scene.ids[i] = engine();
+        }
+        DistributedSettings settings;
+        settings.hand_off = hand_off;
+        TypeParam detector(MPI_COMM_WORLD, settings);
+        for (int step = 0; step < 4; ++step) {
+            SCOPED_TRACE(step);
+            expect_exact_step(detector, scene, hand_off, step % 2 == 1);
+            advance(scene, engine, ranks_of());
+        }
+    }
+}
+
 TYPED_TEST(DistributedDetection, AllBoxesOnOneRankOthersEmpty) {
     using BoxT = typename TypeParam::box_type;
     for (int holder : {0, ranks_of() - 1}) {

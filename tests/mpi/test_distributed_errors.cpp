@@ -139,8 +139,15 @@ TEST_F(DistributedErrors, LengthsDifferOnOneRank) {
 
 TEST(DistributedSettingsCheck, ThresholdBelowOneIsRefused) {
     DistributedSettings settings;
-    settings.rebalance_threshold = 0.5;
-    EXPECT_THROW(DistributedDetector3d(MPI_COMM_WORLD, settings), ArgumentError);
+    settings.rebalance_threshold = 0.1;
+    try {
+        DistributedDetector3d detector(MPI_COMM_WORLD, settings);
+        ADD_FAILURE() << "a threshold of 0.1 was taken";
+    } catch (const ArgumentError& error) {
+        // The number as the caller wrote it, not std::to_string's 0.100000.
+        EXPECT_NE(std::string(error.what()).find("at least 1, not 0.1"), std::string::npos) << error.what();
+        EXPECT_EQ(std::string(error.what()).find("0.100000"), std::string::npos) << error.what();
+    }
 }
 
 }  // namespace

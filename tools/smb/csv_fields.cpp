@@ -12,6 +12,12 @@ namespace smb::io {
 
 namespace {
 
+[[noreturn]] void fail(std::string_view column, std::string_view field, const std::string& what) {
+    throw std::invalid_argument(std::string(column) + " " + quoted(field) + " " + what);
+}
+
+}  // namespace
+
 // Bytes outside printable ASCII are shown as \xHH: a NUL would otherwise cut the message
 // short (what() is a C string) and other control bytes would garble the terminal.
 std::string quoted(std::string_view text) {
@@ -32,12 +38,6 @@ std::string quoted(std::string_view text) {
     result += "'";
     return result;
 }
-
-[[noreturn]] void fail(std::string_view column, std::string_view field, const std::string& what) {
-    throw std::invalid_argument(std::string(column) + " " + quoted(field) + " " + what);
-}
-
-}  // namespace
 
 void split_fields(std::string_view line, std::vector<std::string_view>& fields) {
     fields.clear();

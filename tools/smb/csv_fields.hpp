@@ -4,6 +4,7 @@
 // std::invalid_argument with a message naming the column; the readers add file and line.
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -11,6 +12,10 @@ namespace smb::io {
 
 /// Splits a line at commas into `fields` (cleared first). Quoting is not part of our formats.
 void split_fields(std::string_view line, std::vector<std::string_view>& fields);
+
+/// `text` between single quotes for a message: its first 40 bytes, those outside printable
+/// ASCII written as \xHH, and "..." where it was cut.
+[[nodiscard]] std::string quoted(std::string_view text);
 
 /// Drops surrounding spaces and tabs.
 [[nodiscard]] std::string_view trim(std::string_view text);

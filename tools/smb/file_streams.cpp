@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "file_streams.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -12,6 +13,9 @@
 #include <iostream>
 #include <stdexcept>
 #include <vector>
+
+#include "descriptor_stream.hpp"
+#include "partial_files.hpp"
 
 namespace smb::io {
 
@@ -70,6 +74,32 @@ InputFile::InputFile(const std::string& path) {
     name_ = path;
 }
 
+namespace {
+
+/// std::cout's buffer once keep_standard_output_errors() was called, else null.
+DescriptorBuffer* standard_output_buffer = nullptr;
+
+/// The errno of the first failed write to standard output, where it was kept, else errno.
+int standard_output_error() { return standard_output_buffer ? standard_output_buffer->error() : errno; }
+
+std::string with_reason(std::string message, int error) {
+    if (error != 0) {
+        message += ": ";
+        message += std::strerror(error);
+    }
+    return message;
+}
+
+}  // namespace
+
+void keep_standard_output_errors() {
+    if (standard_output_buffer != nullptr) return;
+    // Never destroyed: std::cout is flushed after every static object is gone.
+    standard_output_buffer = new DescriptorBuffer(STDOUT_FILENO);
+    std::cout.flush();
+    std::cout.rdbuf(standard_output_buffer);
+}
+
 OutputFile::OutputFile(const std::string& path) : path_(path) {
     if (path == "-") {
         stream_ = &std::cout;
@@ -83,34 +113,32 @@ OutputFile::OutputFile(const std::string& path) : path_(path) {
         // A FIFO or a device cannot be replaced by a file without breaking whoever uses it (a
         // reader at the other end, /dev/null for every other program): write into it.
         errno = 0;
-        file_ = std::make_unique<std::ofstream>(target_, std::ios::binary);
-        if (!*file_) throw system_error("cannot open", path);
-        stream_ = file_.get();
+        const int descriptor = ::open(target_.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+        if (descriptor < 0) throw system_error("cannot open", path);
+        file_ = std::make_unique<DescriptorStream>(descriptor);
+        stream_ = &file_->stream();
         return;
     }
     // The temporary lives beside the target so that the final rename stays on one file system
-    // and is atomic.
+    // and is atomic; its name says what it is to whoever finds one (after a SIGKILL).
     const std::filesystem::path target(target_);
     const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
     std::string hidden_name = ".";  // appended piecewise: GCC 12 misreads "." + string (-Wrestrict)
     hidden_name += target.filename().string();
-    hidden_name += ".tmp-XXXXXX";
+    hidden_name += ".smb-partial-XXXXXX";
     const std::string pattern = (folder / hidden_name).string();
     std::vector<char> name(pattern.begin(), pattern.end());
     name.push_back('\0');
-    const int descriptor = ::mkstemp(name.data());
+    errno = 0;
+    const int descriptor = ::mkostemp(name.data(), O_CLOEXEC);
     if (descriptor < 0) throw system_error("cannot create a file in the folder of", path);
+    temporary_path_ = name.data();
+    cleanup_slot_ = remember_partial_file(temporary_path_);
+    file_ = std::make_unique<DescriptorStream>(descriptor);
+    stream_ = &file_->stream();
     // A file that is replaced keeps its permissions (not set-id bits: it is data); a new one gets
     // what open() would give it.
     ::fchmod(descriptor, exists ? static_cast<mode_t>(status.st_mode & 0777) : default_file_mode());
-    ::close(descriptor);
-    temporary_path_ = name.data();
-    file_ = std::make_unique<std::ofstream>(temporary_path_, std::ios::binary | std::ios::trunc);
-    if (!*file_) {
-        std::remove(temporary_path_.c_str());
-        throw system_error("cannot write", path);
-    }
-    stream_ = file_.get();
 }
 
 OutputFile::~OutputFile() {
@@ -118,6 +146,7 @@ OutputFile::~OutputFile() {
         file_->close();
         if (!temporary_path_.empty()) std::remove(temporary_path_.c_str());
     }
+    forget_partial_file(cleanup_slot_);
 }
 
 void OutputFile::commit() {
@@ -126,36 +155,26 @@ void OutputFile::commit() {
         committed_ = true;
         return;
     }
+    if (const int error = file_->close(); error != 0)
+        throw std::runtime_error(with_reason("writing failed for '" + path_ + "'", error));
     errno = 0;
-    file_->close();
-    if (!*file_) throw system_error("writing failed for", path_);
     if (!temporary_path_.empty() && std::rename(temporary_path_.c_str(), target_.c_str()) != 0)
         throw system_error("cannot move the output into place at", path_);
     committed_ = true;
+    forget_partial_file(cleanup_slot_);
+    cleanup_slot_ = -1;
 }
 
 void OutputFile::throw_if_failed() const {
     if (*stream_) return;
-    std::string message =
-        file_ ? "writing failed for '" + path_ + "'" : std::string("writing to standard output failed");
-    if (errno != 0) {
-        message += ": ";
-        message += std::strerror(errno);
-    }
-    throw std::runtime_error(message);
+    if (file_) throw std::runtime_error(with_reason("writing failed for '" + path_ + "'", file_->error()));
+    throw std::runtime_error(with_reason("writing to standard output failed", standard_output_error()));
 }
 
 void flush_standard_output() {
     errno = 0;
     std::cout.flush();
-    if (!std::cout) {
-        std::string message = "writing to standard output failed";
-        if (errno != 0) {
-            message += ": ";
-            message += std::strerror(errno);
-        }
-        throw std::runtime_error(message);
-    }
+    if (!std::cout) throw std::runtime_error(with_reason("writing to standard output failed", standard_output_error()));
 }
 
 void close_standard_output() {

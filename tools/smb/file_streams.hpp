@@ -26,14 +26,19 @@ private:
     std::string name_;
 };
 
+class DescriptorStream;
+
 /// Writes to standard output for "-", otherwise to what `path` names, symlinks followed to their
 /// final target (a relative link read from the link's folder; the target of a dangling link is
 /// created), so that a link stays a link and its target gets the content.
 ///  - A regular file, or nothing yet: the output goes to a temporary file in the target's folder,
-///    renamed onto the target by commit(). An output that failed half way is removed by the
-///    destructor, so a file at the target is always complete (or the previous one, untouched).
+///    named .<name>.smb-partial-XXXXXX, renamed onto the target by commit(). An output that
+///    failed half way is removed by the destructor, and by the handler of any signal that ends
+///    the program (partial_files.hpp; SIGKILL cannot be caught), so a file at the target is
+///    always complete (or the previous one, untouched).
 ///  - Anything else that exists (a FIFO, a character device such as /dev/null): written straight
 ///    through, never replaced.
+/// A failed write keeps the system's reason (errno) for the message.
 class OutputFile {
 public:
     explicit OutputFile(const std::string& path);
@@ -54,10 +59,15 @@ private:
     std::string path_;            ///< as the user gave it, for messages
     std::string target_;          ///< `path_` with its symlinks followed
     std::string temporary_path_;  ///< empty when written straight through
-    std::unique_ptr<std::ofstream> file_;
+    std::unique_ptr<DescriptorStream> file_;
     std::ostream* stream_;
+    int cleanup_slot_ = -1;  ///< where the signal handlers find temporary_path_, or -1
     bool committed_ = false;
 };
+
+/// Sends std::cout through a buffer that keeps the system's reason for a failed write, so that
+/// the messages of flush_standard_output() and OutputFile say it. Call first thing in main().
+void keep_standard_output_errors();
 
 /// Flushes standard output; throws std::runtime_error when what was written could not be (a full
 /// disk, a closed pipe, /dev/full), so that the exit status can say so.

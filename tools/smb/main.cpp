@@ -54,6 +54,7 @@ int argument_error(const CLI::App& app, const std::string& problem) {
 int main(int argc, char** argv) {
     namespace exit_status = smb::cli::exit_status;
     std::ios::sync_with_stdio(false);
+    smb::io::keep_standard_output_errors();
 
     CLI::App app("smb " SMB_VERSION_STRING
                  ": broad-phase collision detection of moving boxes (Sort Moving Boxes, "

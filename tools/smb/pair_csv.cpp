@@ -51,8 +51,7 @@ std::vector<FramePair> read_pair_csv(std::istream& in, const std::string& source
     auto header = lines.next();
     if (!header) throw CsvError(source_name, 1, "empty file: expected the header 'frame,a,b'");
     if (*header != pair_header) {
-        throw CsvError(source_name, 1,
-                       "unknown header '" + std::string(header->substr(0, 80)) + "': expected 'frame,a,b'");
+        throw CsvError(source_name, 1, "unknown header " + quoted(*header) + ": expected 'frame,a,b'");
     }
     std::vector<FramePair> rows;
     std::vector<std::string_view> fields;

@@ -19,18 +19,14 @@ namespace smb::cli {
 
 namespace {
 
+/// A bound as a scene writes a coordinate: a decimal number (subnormals included), with no
+/// sign but '-'; hex, infinities and NaN are refused.
 double parse_bound(std::string_view text, std::string_view axis) {
-    const std::string copy(io::trim(text));
-    std::size_t used = 0;
-    double value = 0;
-    try {
-        value = std::stod(copy, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (copy.empty() || used != copy.size() || !std::isfinite(value))
-        throw std::invalid_argument(fmt::format("the {} bound '{}' is not a finite number", axis, copy));
-    return value;
+    const std::string_view bound = io::trim(text);
+    const std::string column = fmt::format("{} bound", axis);
+    if (bound.starts_with('+'))
+        throw std::invalid_argument(fmt::format("{} {} has a '+': write it without a sign", column, io::quoted(bound)));
+    return io::parse_finite_double(bound, column);
 }
 
 constexpr std::size_t kFlushAt = std::size_t{1} << 20;
@@ -84,12 +80,16 @@ PeriodicAxes parse_periodic_axes(const std::string& text) {
         } else {
             const std::size_t colon = field.find(':');
             if (colon == std::string_view::npos)
-                throw std::invalid_argument(fmt::format("the {} axis '{}' is neither LO:HI nor '-'", axis, field));
+                throw std::invalid_argument(
+                    fmt::format("the {} axis {} is neither LO:HI nor '-'", axis, io::quoted(field)));
             const double lo = parse_bound(field.substr(0, colon), axis);
             const double hi = parse_bound(field.substr(colon + 1), axis);
             if (!(lo < hi))
                 throw std::invalid_argument(
                     fmt::format("the {} interval {}:{} is empty (LO must be below HI)", axis, lo, hi));
+            if (!std::isfinite(hi - lo))
+                throw std::invalid_argument(fmt::format(
+                    "the {} interval {}:{} is too wide: its period HI - LO overflows a double", axis, lo, hi));
             axes.emplace_back(std::pair{lo, hi});
         }
         if (comma == std::string_view::npos) break;

@@ -51,8 +51,8 @@ void SceneReader::read_header() {
     } else if (normalised == header_2d) {
         dimension_ = 2;
     } else {
-        fail(lines_.line_number(), "unknown header '" + std::string(text.substr(0, 80)) + "': expected '" +
-                                       std::string(header_3d) + "' or '" + std::string(header_2d) + "'");
+        fail(lines_.line_number(), "unknown header " + quoted(text) + ": expected '" + std::string(header_3d) +
+                                       "' or '" + std::string(header_2d) + "'");
     }
 }
 

@@ -2,6 +2,8 @@
 #include "spilling_pair_sorter.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <queue>
 #include <stdexcept>
 #include <string>
@@ -12,6 +14,9 @@ namespace smb::io {
 namespace {
 
 constexpr std::size_t kOutputChunk = std::size_t{1} << 16;
+
+/// `what`, with the system's reason where errno holds one (a full disk says so).
+std::string with_reason(const std::string& what) { return errno == 0 ? what : what + ": " + std::strerror(errno); }
 
 }  // namespace
 
@@ -33,11 +38,12 @@ void SpillingPairSorter::add(std::span<const Pair> pairs) {
 
 void SpillingPairSorter::spill() {
     std::sort(buffer_.begin(), buffer_.end());
+    errno = 0;
     TemporaryFile file(std::tmpfile());
-    if (!file) throw std::runtime_error("cannot create a temporary file to sort the pairs of a frame");
+    if (!file) throw std::runtime_error(with_reason("cannot create a temporary file to sort the pairs of a frame"));
     if (std::fwrite(buffer_.data(), sizeof(Pair), buffer_.size(), file.get()) != buffer_.size() ||
         std::fflush(file.get()) != 0)
-        throw std::runtime_error("cannot write the pairs of a frame to a temporary file (disk full?)");
+        throw std::runtime_error(with_reason("cannot write the pairs of a frame to a temporary file"));
     std::rewind(file.get());
     runs_.push_back(std::move(file));
     ++runs_spilled_;
