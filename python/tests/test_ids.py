@@ -164,8 +164,6 @@ PERIODIC_WIDE_IDS = textwrap.dedent("""
 """)
 
 
-@pytest.mark.xfail(reason="a periodic World loses or crashes on pairs with ids >= 2**32 until the library's "
-                   "periodic report keeps 64-bit ids", strict=False)
 def test_periodic_world_with_wide_ids():
     """In a child interpreter, so that a crash fails this test alone."""
     run = subprocess.run([sys.executable, "-c", PERIODIC_WIDE_IDS], capture_output=True, text=True, timeout=120)
