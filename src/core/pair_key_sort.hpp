@@ -5,7 +5,7 @@
 // Steps with much motion change a quarter of the pairs (the paper's environment at 1M boxes,
 // update factor 1e-3: some 400k events a step), and a comparison sort of those cost more than
 // the diff that found them; the Bullet back end merges a million candidates a step by key.
-// With ten thousand to a million names a key has 28 to 40 bits: two or three passes over 8-byte
+// With ten thousand to a million names a key has 28 to 40 bits: three or four passes over 8-byte
 // keys, half the memory traffic of moving 16-byte pairs.
 
 #include <algorithm>
@@ -34,7 +34,8 @@ struct RadixDigits {
 
     /// Adds `key` to every pass's counts (`counts`: `passes` arrays of `count`).
     void tally(std::uint64_t key, std::uint32_t* counts) const noexcept {
-        for (int p = 0; p < passes; ++p) ++counts[static_cast<std::size_t>(p) * count + ((key >> (p * bits)) & (count - 1))];
+        for (int p = 0; p < passes; ++p)
+            ++counts[static_cast<std::size_t>(p) * count + ((key >> (p * bits)) & (count - 1))];
     }
 };
 
