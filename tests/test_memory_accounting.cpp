@@ -167,7 +167,8 @@ TYPED_TEST(MemoryAccountingTest, BytesHeldMatchesTheHeap) { this->run(scaled(100
 TYPED_TEST(MemoryAccountingTest, QueriesReuseTheIndexUntilTheBoxesChange) {
     Random random(5);
     std::vector<typename TestFixture::BoxT> boxes(2000);
-    for (auto& box : boxes) box = random_box<typename TypeParam::real_type, TypeParam::dimension>(random, 0, 40, 0.5, 2.0);
+    for (auto& box : boxes)
+        box = random_box<typename TypeParam::real_type, TypeParam::dimension>(random, 0, 40, 0.5, 2.0);
     TypeParam world;
     world.assign(boxes);
     std::vector<BoxId> found;
