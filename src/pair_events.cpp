@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
+#include "core/pair_key_sort.hpp"
 #include "core/thread_team.hpp"
 #include "events/body_fates.hpp"
 #include "events/pair_partitions.hpp"
-#include "events/pair_radix_sort.hpp"
 #include "events/partition_diff.hpp"
 
 namespace smb {

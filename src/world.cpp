@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "smb/world.hpp"
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <unordered_set>
 #include <utility>
 
 #include "core/collected_pairs.hpp"
+#include "query/world_query_index.hpp"
 #include "world_state.hpp"
 
 namespace smb {
@@ -58,22 +60,20 @@ World<Real, Dim>& World<Real, Dim>::operator=(World&&) noexcept = default;
 template <std::floating_point Real, int Dim>
 detail::WorldState<Real, Dim>& World<Real, Dim>::state() {
     if (!state_) state_ = std::make_unique<detail::WorldState<Real, Dim>>(kDefaultSettings);
-    query_index_current_ = false;
     return *state_;
 }
 
 template <std::floating_point Real, int Dim>
 const BoxIndex<Real, Dim>& World<Real, Dim>::query_index() {
-    if (query_index_current_) return query_index_;
-    if (!state_ || state_->store().size() == 0) {
-        query_index_ = BoxIndex<Real, Dim>();
-    } else {
-        const auto& store = state_->store();
-        query_index_.build_from_store(store.boxes(), store.ids(),
-                                      [&](std::size_t slot) { return store.alive(static_cast<detail::Slot>(slot)); });
-    }
-    query_index_current_ = true;
-    return query_index_;
+    if (!query_index_) query_index_ = std::make_unique<detail::WorldQueryIndex<Real, Dim>>();
+    auto& cache = *query_index_;
+    const std::uint64_t changes = state_ ? state_->store().changes() : 0;
+    if (cache.built_at == changes) return cache.index;
+    const auto& store = state_->store();
+    cache.index.build_from_store(store.boxes(), store.ids(),
+                                 [&](std::size_t slot) { return store.alive(static_cast<detail::Slot>(slot)); });
+    cache.built_at = changes;
+    return cache.index;
 }
 
 template <std::floating_point Real, int Dim>
@@ -140,8 +140,7 @@ void World<Real, Dim>::assign(std::span<const box_type> boxes) {
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::clear() {
     if (state_) state_->clear();
-    query_index_ = BoxIndex<Real, Dim>();
-    query_index_current_ = false;
+    query_index_.reset();  // the cleared store counts its changes from 0 again
 }
 
 template <std::floating_point Real, int Dim>
@@ -211,7 +210,7 @@ std::size_t World<Real, Dim>::last_retested_pairs() const noexcept {
 
 template <std::floating_point Real, int Dim>
 std::size_t World<Real, Dim>::bytes_held() const noexcept {
-    return (state_ ? state_->bytes_held() : 0) + query_index_.bytes_held();
+    return (state_ ? state_->bytes_held() : 0) + (query_index_ ? query_index_->index.bytes_held() : 0);
 }
 
 template <std::floating_point Real, int Dim>

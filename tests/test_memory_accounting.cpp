@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Checks World::bytes_held() and DetectStats::bytes_held against the heap bytes the world
 // really holds, measured by replacing the global allocation functions of this test program.
-// Agreement is asked within kRelativeTolerance of the measured bytes plus kSlackBytes.
+// Agreement is asked within kRelativeTolerance of the measured bytes plus kSlackBytes. The same
+// count of allocations shows that a World's query index is not built again while its boxes stay.
 
 #include <gtest/gtest.h>
 
@@ -25,6 +26,7 @@ namespace {
 // without relying on malloc_usable_size (which includes the allocator's rounding).
 constexpr std::size_t kHeader = 64;  // covers every alignment the program asks for
 std::atomic<std::int64_t> g_live_bytes{0};
+std::atomic<std::int64_t> g_allocations{0};
 
 void* counted_allocate(std::size_t size, std::size_t alignment) {
     const std::size_t header = alignment > kHeader ? alignment : kHeader;
@@ -35,6 +37,7 @@ void* counted_allocate(std::size_t size, std::size_t alignment) {
     reinterpret_cast<std::size_t*>(user)[-1] = size;
     reinterpret_cast<std::size_t*>(user)[-2] = header;
     g_live_bytes.fetch_add(static_cast<std::int64_t>(size), std::memory_order_relaxed);
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
     return user;
 }
 
@@ -48,6 +51,7 @@ void counted_free(void* pointer) noexcept {
 }
 
 std::int64_t live_bytes() { return g_live_bytes.load(std::memory_order_relaxed); }
+std::int64_t allocations() { return g_allocations.load(std::memory_order_relaxed); }
 
 }  // namespace
 
@@ -156,6 +160,39 @@ protected:
 TYPED_TEST_SUITE(MemoryAccountingTest, WorldTypes, WorldTypeNames);
 
 TYPED_TEST(MemoryAccountingTest, BytesHeldMatchesTheHeap) { this->run(scaled(100000)); }
+
+// A query builds the index (temporary arrays: allocations); detections, filters and statics
+// leave the boxes as they were, so the queries after them reuse it and allocate nothing, while
+// an update builds it again.
+TYPED_TEST(MemoryAccountingTest, QueriesReuseTheIndexUntilTheBoxesChange) {
+    Random random(5);
+    std::vector<typename TestFixture::BoxT> boxes(2000);
+    for (auto& box : boxes)
+        box = random_box<typename TypeParam::real_type, TypeParam::dimension>(random, 0, 40, 0.5, 2.0);
+    TypeParam world;
+    world.assign(boxes);
+    std::vector<BoxId> found;
+    found.reserve(boxes.size());
+    std::vector<Pair> pairs;
+    world.query(boxes[0], found);
+    const auto query_allocations = [&] {
+        const std::int64_t before = allocations();
+        world.query(boxes[1], found);
+        return allocations() - before;
+    };
+    EXPECT_EQ(query_allocations(), 0);
+    world.detect(pairs);
+    EXPECT_EQ(query_allocations(), 0) << "a detection made the index rebuild";
+    world.set_static(BoxId{3}, true);
+    Filter filter;
+    filter.category = 2;
+    world.set_filter(BoxId{4}, filter);
+    world.detect(pairs);
+    EXPECT_EQ(query_allocations(), 0) << "filters and statics made the index rebuild";
+    world.update(BoxId{5}, boxes[6]);
+    EXPECT_GT(query_allocations(), 0) << "an update left the index as it was";
+    EXPECT_EQ(query_allocations(), 0);
+}
 
 }  // namespace
 }  // namespace smb::test

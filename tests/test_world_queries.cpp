@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // World::query and World::cast_ray answer for the boxes the world holds now: checked against
 // brute force over a map of the same boxes through inserts, updates, removes, assign, detect,
-// clear and moves.
+// clear and moves, and a world cleared and refilled.
 
 #include <gtest/gtest.h>
 
@@ -121,6 +121,31 @@ TYPED_TEST(WorldQueryTest, AssignClearAndMove) {
     moved.assign(boxes);
     for (std::size_t i = 0; i < boxes.size(); ++i) this->truth[i] = boxes[i];
     this->check(moved, 20, 40);
+}
+
+// The index is current while the box store counts no change; a cleared world counts from zero
+// again, so a world cleared and refilled with as many calls must not answer from the old index.
+TYPED_TEST(WorldQueryTest, ClearedAndRefilledWithAsManyCalls) {
+    using Bt = typename TestFixture::B;
+    TypeParam world;
+    std::vector<Bt> first;
+    std::vector<Bt> second;
+    for (int i = 0; i < 100; ++i) first.push_back(this->random_box(30));
+    for (int i = 0; i < 100; ++i) second.push_back(this->random_box(30));
+    std::vector<Pair> pairs;
+    for (const auto* boxes : {&first, &second, &first}) {
+        world.clear();
+        world.assign(*boxes);  // one call since the clear, every time
+        world.detect(pairs);
+        this->truth.clear();
+        for (std::size_t i = 0; i < boxes->size(); ++i) this->truth[i] = (*boxes)[i];
+        this->check(world, 20, 20);
+    }
+    world.clear();
+    world.insert(BoxId{7}, first[0]);
+    this->truth.clear();
+    this->truth[7] = first[0];
+    this->check(world, 10, 10);
 }
 
 TEST(QueryDocs, TheExamplesOfDocsQueriesCompileAndAnswer) {

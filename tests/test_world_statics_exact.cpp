@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Static boxes against brute force where the moving boxes' cached copies of them are hardest to
 // get right: faces within a float or a lattice step of a moving box's (quantized_bounds.hpp),
-// statics of every size the grid tells apart (static_grid.hpp), and moving boxes creeping across
-// static faces by steps far below their size.
+// statics of every size the grid puts on levels of its own (query/grid_index.hpp), and moving
+// boxes creeping across static faces by steps far below their size.
 
 #include <gtest/gtest.h>
 
@@ -181,8 +181,8 @@ TEST(WorldFilters, StaticsWithinALatticeStepOfMovingBoxesPairExactly) {
     check_statics_within_a_lattice_step<float, 2>();
 }
 
-/// Statics of every kind the grid tells apart (static_grid.hpp): small ones found by their home
-/// cell (points among them), wider ones listed in every cell they cover, and floors kept apart;
+/// Statics of every size the grid puts on levels of its own (query/grid_index.hpp): small ones on
+/// the finest (points among them), wider ones on coarser levels, and floors on the coarsest;
 /// moving boxes of mixed sizes that wander, jump and stop among them; against brute force.
 template <std::floating_point Real, int Dim>
 void check_statics_of_mixed_sizes(std::uint64_t seed) {

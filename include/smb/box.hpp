@@ -6,6 +6,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstddef>
+#include <ranges>
 
 namespace smb {
 
@@ -28,6 +29,19 @@ using Box2f = Box<float, 2>;
 using Box2d = Box<double, 2>;
 using Box3f = Box<float, 3>;
 using Box3d = Box<double, 3>;
+
+namespace detail {
+template <class T>
+inline constexpr bool is_box = false;
+template <std::floating_point Real, int Dim>
+inline constexpr bool is_box<Box<Real, Dim>> = true;
+}  // namespace detail
+
+/// A contiguous range of boxes of one type: std::vector, std::array, std::span (of const boxes
+/// or not), a C array.
+template <class Range>
+concept BoxRange = std::ranges::contiguous_range<const Range> && std::ranges::sized_range<const Range> &&
+    detail::is_box<std::ranges::range_value_t<const Range>>;
 
 /// True when every coordinate is finite and min <= max on every axis.
 template <std::floating_point Real, int Dim>

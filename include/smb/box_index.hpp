@@ -31,12 +31,13 @@ class World;
 ///
 /// Inside: a hierarchy of uniform grids. The finest cell side is about the boxes' mean extent
 /// (made coarser so that there are at most about 2N cells); each box sits on the finest level
-/// whose cell is at least as large as the box (so in at most 2 cells per axis) and is listed in
-/// every cell it overlaps there. A huge box thus lands on a coarse level with few cells, instead
-/// of being listed in many fine ones. A box query visits the cells it covers on each non-empty
-/// level; a ray walks the cells it crosses on each level, slab by slab along its dominant axis,
-/// and a nearest cast stops once the cells ahead start beyond the best hit, so its cost grows
-/// with the cells crossed, not with N. The cells are computed conservatively (the walk is
+/// whose cell is at least as large as the box (so it reaches at most one cell past the cell of
+/// its lower corner) and is kept once, in the run of its lower corner's cell. A huge box thus
+/// lands on a coarse level with few cells. A box query reads, on each non-empty level, the runs
+/// of the cells from its lower corner less the level's widest box up to its upper corner; a ray
+/// walks the cells it crosses on each level, slab by slab along its dominant axis, and a nearest
+/// cast stops once the cells ahead start beyond the best hit, so its cost grows with the cells
+/// crossed, not with N. The cells are computed conservatively (the walk is
 /// widened by a millionth of a cell, and more far from the scene), then every candidate is tested
 /// exactly, so rays along faces, edges and cell boundaries miss nothing.
 ///

@@ -12,7 +12,6 @@
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 #include "smb/settings.hpp"
-#include "smb/world.hpp"
 
 namespace smb {
 

@@ -27,6 +27,8 @@ namespace smb {
 namespace detail {
 template <std::floating_point Real, int Dim>
 class WorldState;
+template <std::floating_point Real, int Dim>
+struct WorldQueryIndex;
 }  // namespace detail
 
 /// A set of moving axis-aligned boxes, each under a caller-chosen BoxId, and the SMB broad
@@ -177,8 +179,8 @@ public:
 
     /// Region queries and ray casts (docs/queries.md). They answer for the boxes the world holds
     /// now, with every change made so far: they use a BoxIndex over the world's boxes, rebuilt
-    /// (O(N)) by the first query after any other non-const call (a change, or a detection), and
-    /// then reused. Results and errors as BoxIndex: each box overlapping `box`, by id.
+    /// (O(N)) by the first query after a change of the boxes (insert, update, remove, assign,
+    /// clear), and reused until the next one; detections, filters and statics keep it. Results and errors as BoxIndex: each box overlapping `box`, by id.
     void query(const box_type& box, std::vector<BoxId>& out);
     /// Every (query index, id) with the box `id` overlapping queries[index], sorted by index.
     void query(std::span<const box_type> queries, std::vector<QueryHit>& out);
@@ -186,15 +188,14 @@ public:
     void cast_ray(const Ray<Real, Dim>& ray, RayHits mode, std::vector<RayHit<Real>>& out);
 
 private:
-    /// The state; a moved-from world (state_ null) gets a fresh one first. Every non-const path
-    /// comes through here, so this is also where the query index is marked out of date.
+    /// The state; a moved-from world (state_ null) gets a fresh one first.
     detail::WorldState<Real, Dim>& state();
-    /// The query index, rebuilt first if the world may have changed since it was built.
+    /// The query index, rebuilt first if the boxes changed since it was built.
     const BoxIndex<Real, Dim>& query_index();
 
     std::unique_ptr<detail::WorldState<Real, Dim>> state_;
-    BoxIndex<Real, Dim> query_index_;
-    bool query_index_current_ = false;
+    /// Made by the first query: a world that is never queried holds no index.
+    std::unique_ptr<detail::WorldQueryIndex<Real, Dim>> query_index_;
 };
 
 using World2f = World<float, 2>;
@@ -206,19 +207,6 @@ using World3d = World<double, 3>;
 template <std::floating_point Real, int Dim>
 [[nodiscard]] std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> boxes,
                                                        const WorldSettings& settings = {});
-
-namespace detail {
-template <class T>
-inline constexpr bool is_box = false;
-template <std::floating_point Real, int Dim>
-inline constexpr bool is_box<Box<Real, Dim>> = true;
-}  // namespace detail
-
-/// A contiguous range of boxes of one type: std::vector, std::array, std::span (of const boxes
-/// or not), a C array.
-template <class Range>
-concept BoxRange = std::ranges::contiguous_range<const Range> && std::ranges::sized_range<const Range> &&
-    detail::is_box<std::ranges::range_value_t<const Range>>;
 
 /// find_overlapping_pairs over any BoxRange: the same detection, over a span of its boxes.
 template <BoxRange Range>

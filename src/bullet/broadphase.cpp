@@ -2,7 +2,7 @@
 // The proxies' life and the pair cache: the pairs that begin and stop overlapping become the cache's additions and
 // removals, so that a pair (and its contact manifold) lives exactly while its boxes overlap.
 
-#include "smb/bullet/broadphase.hpp"
+#include "bullet/broadphase_impl.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -13,16 +13,9 @@
 #include <string>
 
 #include "bullet/proxy.hpp"
+#include "core/tuning.hpp"
 
 namespace smb::bullet {
-
-namespace {
-
-/// A static-class proxy that moved is held dynamic until it has kept still this many steps, so
-/// that a kinematic body pushed every step does not make smb index its statics again each step.
-constexpr std::uint32_t steps_before_static = 8;
-
-}  // namespace
 
 void detail::throw_unknown_proxy() {
     throw UnknownIdError("smb::bullet::Broadphase: the proxy was not created by this broad phase, or was destroyed");
@@ -37,7 +30,7 @@ Box<float, 3> detail::checked_box(const btVector3& min, const btVector3& max, co
     return box;
 }
 
-Broadphase::Broadphase(const WorldSettings& settings, btOverlappingPairCache* pair_cache, float skin)
+Broadphase::Impl::Impl(const WorldSettings& settings, btOverlappingPairCache* pair_cache, float skin)
     : world_(settings), skin_(skin), cache_(pair_cache) {
     if (!std::isfinite(skin) || skin < 0) {
         throw ArgumentError("smb::bullet::Broadphase: the skin must be finite and not negative");
@@ -48,11 +41,8 @@ Broadphase::Broadphase(const WorldSettings& settings, btOverlappingPairCache* pa
     }
 }
 
-Broadphase::~Broadphase() = default;
-
-btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVector3& aabbMax, int /*shapeType*/,
-                                           void* userPtr, int collisionFilterGroup, int collisionFilterMask,
-                                           btDispatcher* /*dispatcher*/) {
+btBroadphaseProxy* Broadphase::Impl::createProxy(const btVector3& aabbMin, const btVector3& aabbMax, void* userPtr,
+                                                 int collisionFilterGroup, int collisionFilterMask) {
     const Box<float, 3> box = detail::checked_box(aabbMin, aabbMax, "createProxy");
     std::uint32_t id = 0;
     if (!free_ids_.empty()) {
@@ -102,7 +92,7 @@ btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVec
     return &proxy;
 }
 
-void Broadphase::destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher) {
+void Broadphase::Impl::destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher) {
     Proxy& own_proxy = own(proxy);
     remove_pairs_of(own_proxy, dispatcher);
     const auto id = static_cast<std::uint32_t>(own_proxy.m_uniqueId);
@@ -118,7 +108,7 @@ void Broadphase::destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher
     changed_ = true;
 }
 
-void Broadphase::remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher) {
+void Broadphase::Impl::remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher) {
     const auto id = static_cast<std::uint32_t>(proxy.m_uniqueId);
     // btHashedOverlappingPairCache::removeOverlappingPairsContainingProxy visits every pair of
     // the cache: with 20 bodies taken out of a pile of 10 000 (50 000 pairs) it cost more than the
@@ -138,8 +128,7 @@ void Broadphase::remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher) {
     }
 }
 
-void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax,
-                         btDispatcher* /*dispatcher*/) {
+void Broadphase::Impl::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax) {
     Proxy& own_proxy = own(proxy);
     // btCollisionWorld sets every object's box at every step, resting or not: an unchanged box
     // costs nothing further (it was checked when it was set; a NaN never compares equal).
@@ -158,13 +147,13 @@ void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, con
     mark_changed(id);
 }
 
-void Broadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const {
+void Broadphase::Impl::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const {
     const Proxy& own_proxy = own(proxy);
     aabbMin = own_proxy.m_aabbMin;
     aabbMax = own_proxy.m_aabbMax;
 }
 
-void Broadphase::sync_filters() {
+void Broadphase::Impl::sync_filters() {
     // Every live proxy's bits, at every step: the liveness and the filter held are read from
     // arrays by id, so that a proxy whose bits did not change costs one cache line of its own
     // (that of Bullet's fields), which matters once the proxies outgrow the caches.
@@ -189,7 +178,7 @@ void Broadphase::sync_filters() {
     }
 }
 
-void Broadphase::set_callback_mode(bool callback_mode) {
+void Broadphase::Impl::set_callback_mode(bool callback_mode) {
     callback_mode_ = callback_mode;
     changed_ = true;
     test_all_ = true;
@@ -208,7 +197,7 @@ void Broadphase::set_callback_mode(bool callback_mode) {
     }
 }
 
-void Broadphase::settle_restless_statics() {
+void Broadphase::Impl::settle_restless_statics() {
     std::size_t kept = 0;
     for (const std::uint32_t id : restless_) {
         Proxy* proxy = live(id);
@@ -217,7 +206,7 @@ void Broadphase::settle_restless_statics() {
             proxy->restless = false;
             continue;
         }
-        if (++proxy->calm_steps >= steps_before_static) {
+        if (++proxy->calm_steps >= smb::detail::tuning::bullet_steps_before_static) {
             world_.set_static(id, true);
             proxy->held_static = true;
             proxy->restless = false;
@@ -228,7 +217,7 @@ void Broadphase::settle_restless_statics() {
     restless_.resize(kept);
 }
 
-void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
+void Broadphase::Impl::calculateOverlappingPairs(btDispatcher* dispatcher) {
     // Filters first, so that a static proxy that moved since is held dynamic by flush_moves.
     const bool callback_mode = cache_->getOverlapFilterCallback() != nullptr;
     if (callback_mode != callback_mode_) set_callback_mode(callback_mode);
@@ -278,5 +267,59 @@ void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) {
     settle_restless_statics();
     ++step_;
 }
+
+// The public interface: each call handed to the implementation, in this file so that the
+// calls Bullet makes for every proxy at every step (setAabb, getAabb) inline their bodies.
+
+Broadphase::Broadphase(const WorldSettings& settings, btOverlappingPairCache* pair_cache, float skin)
+    : impl_(std::make_unique<Impl>(settings, pair_cache, skin)) {}
+
+Broadphase::~Broadphase() = default;
+
+btBroadphaseProxy* Broadphase::createProxy(const btVector3& aabbMin, const btVector3& aabbMax, int /*shapeType*/,
+                                           void* userPtr, int collisionFilterGroup, int collisionFilterMask,
+                                           btDispatcher* /*dispatcher*/) {
+    return impl_->createProxy(aabbMin, aabbMax, userPtr, collisionFilterGroup, collisionFilterMask);
+}
+
+void Broadphase::destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher) {
+    impl_->destroyProxy(proxy, dispatcher);
+}
+
+void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax,
+                         btDispatcher* /*dispatcher*/) {
+    impl_->setAabb(proxy, aabbMin, aabbMax);
+}
+
+void Broadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const {
+    impl_->getAabb(proxy, aabbMin, aabbMax);
+}
+
+void Broadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
+                         const btVector3& aabbMin, const btVector3& aabbMax) {
+    impl_->rayTest(rayFrom, rayTo, rayCallback, aabbMin, aabbMax);
+}
+
+void Broadphase::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, btBroadphaseAabbCallback& callback) {
+    impl_->aabbTest(aabbMin, aabbMax, callback);
+}
+
+void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) { impl_->calculateOverlappingPairs(dispatcher); }
+
+btOverlappingPairCache* Broadphase::getOverlappingPairCache() { return impl_->cache(); }
+
+const btOverlappingPairCache* Broadphase::getOverlappingPairCache() const { return impl_->cache(); }
+
+void Broadphase::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const {
+    impl_->getBroadphaseAabb(aabbMin, aabbMax);
+}
+
+void Broadphase::resetPool(btDispatcher* /*dispatcher*/) { impl_->resetPool(); }
+
+void Broadphase::printStats() { impl_->printStats(); }
+
+std::size_t Broadphase::size() const noexcept { return impl_->size(); }
+
+const World<float, 3>& Broadphase::world() const noexcept { return impl_->world(); }
 
 }  // namespace smb::bullet

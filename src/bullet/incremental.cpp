@@ -11,9 +11,9 @@
 #include <algorithm>
 #include <utility>
 
-#include "bullet/pair_keys.hpp"
+#include "bullet/broadphase_impl.hpp"
 #include "bullet/proxy.hpp"
-#include "smb/bullet/broadphase.hpp"
+#include "core/pair_key_sort.hpp"
 #include "smb/filter.hpp"
 
 namespace smb::bullet {
@@ -33,7 +33,7 @@ template <class Candidate>
 
 }  // namespace
 
-void Broadphase::build_index() {
+void Broadphase::Impl::build_index() {
     index_ids_.clear();
     index_boxes_.clear();
     for (std::size_t id = 0; id < slots_.size(); ++id) {
@@ -47,7 +47,7 @@ void Broadphase::build_index() {
     index_current_ = true;
 }
 
-void Broadphase::update_fresh_candidates(btDispatcher* dispatcher) {
+void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
     // Stale boxes are tested one by one for every fresh box: past a limit the index is built
     // again (linear in the boxes, a fraction of a detection).
     const std::size_t stale_limit = std::max<std::size_t>(64, live_ / 8);
@@ -116,8 +116,8 @@ void Broadphase::update_fresh_candidates(btDispatcher* dispatcher) {
     fresh_.clear();
 }
 
-void Broadphase::reconcile_candidates(btDispatcher* dispatcher) {
-    detail::sort_pair_keys(pair_keys_, 2 * key_width_, key_spare_, key_counts_);
+void Broadphase::Impl::reconcile_candidates(btDispatcher* dispatcher) {
+    smb::detail::sort_pair_keys(pair_keys_, 2 * key_width_, key_spare_, key_counts_);
     if (!candidates_sorted_) std::sort(candidates_.begin(), candidates_.end(), comes_before<Candidate>);
     candidates_sorted_ = true;
     merged_.clear();

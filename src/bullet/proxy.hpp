@@ -7,14 +7,14 @@
 #include <limits>
 #include <vector>
 
+#include "bullet/broadphase_impl.hpp"
 #include "smb/box.hpp"
-#include "smb/bullet/broadphase.hpp"
 #include "smb/errors.hpp"
 #include "smb/filter.hpp"
 
 namespace smb::bullet {
 
-struct Broadphase::Proxy : btBroadphaseProxy {
+struct Broadphase::Impl::Proxy : btBroadphaseProxy {
     /// Steps since the box last moved, for a static-class proxy held dynamic (restless_).
     std::uint32_t calm_steps = 0;
     bool alive = false;
@@ -54,7 +54,7 @@ namespace detail {
 }  // namespace detail
 
 // Here, inline: setAabb asks it for every proxy at every step.
-inline Broadphase::Proxy& Broadphase::own(const btBroadphaseProxy* proxy) const {
+inline Broadphase::Impl::Proxy& Broadphase::Impl::own(const btBroadphaseProxy* proxy) const {
     if (proxy != nullptr && proxy->m_uniqueId >= 0) {
         const auto id = static_cast<std::size_t>(proxy->m_uniqueId);
         if (id < slots_.size() && slots_[id].get() == proxy && slots_[id]->alive) return *slots_[id];
@@ -63,21 +63,21 @@ inline Broadphase::Proxy& Broadphase::own(const btBroadphaseProxy* proxy) const 
 }
 
 // Here, inline: every pass over the candidates and the proxies asks it.
-inline Broadphase::Proxy* Broadphase::live(BoxId id) const noexcept {
+inline Broadphase::Impl::Proxy* Broadphase::Impl::live(BoxId id) const noexcept {
     if (id >= slots_.size()) return nullptr;
     Proxy* proxy = slots_[id].get();
     return proxy != nullptr && proxy->alive ? proxy : nullptr;
 }
 
 // Here, inline: setAabb calls it for every box that changed.
-inline void Broadphase::mark_changed(std::uint32_t id) {
+inline void Broadphase::Impl::mark_changed(std::uint32_t id) {
     if ((marks_[id] & detail::changed_mark) != 0) return;
     marks_[id] |= detail::changed_mark;
     changed_ids_.push_back(id);
 }
 
 // Here, inline: the passes over the candidates call it for every one.
-inline void Broadphase::test_candidate(Candidate& candidate, btDispatcher* dispatcher) {
+inline void Broadphase::Impl::test_candidate(Candidate& candidate, btDispatcher* dispatcher) {
     // Every calculateOverlappingPairs leaves each candidate's standing as its boxes are: while
     // neither box changes, it stands (in a pile partly asleep, most candidates).
     if (!test_all_ && ((marks_[candidate.a] | marks_[candidate.b]) & detail::changed_mark) == 0) return;
@@ -85,7 +85,7 @@ inline void Broadphase::test_candidate(Candidate& candidate, btDispatcher* dispa
 }
 
 // Here, inline: the passes over the candidates call it for every one they find anew.
-inline void Broadphase::test_new_candidate(Candidate& candidate, btDispatcher* dispatcher) {
+inline void Broadphase::Impl::test_new_candidate(Candidate& candidate, btDispatcher* dispatcher) {
     const bool overlap = detail::overlaps_branchless(boxes_[candidate.a], boxes_[candidate.b]);
     // Most candidates stay as they were: apart and still apart, or held (or refused) and still
     // overlapping. A filter callback is asked at every step.

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "bullet/broadphase_impl.hpp"
 #include "bullet/proxy.hpp"
-#include "smb/bullet/broadphase.hpp"
 #include "smb/query.hpp"
 
 namespace smb::bullet {
@@ -18,8 +18,8 @@ namespace {
 
 }  // namespace
 
-void Broadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
-                         const btVector3& aabbMin, const btVector3& aabbMax) {
+void Broadphase::Impl::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
+                               const btVector3& aabbMin, const btVector3& aabbMax) {
     flush_moves();
     // Bullet's callbacks measure lambda along the unit direction from rayFrom to rayTo
     // (m_lambda_max = |rayTo - rayFrom| to start with).
@@ -78,7 +78,8 @@ void Broadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBro
     }
 }
 
-void Broadphase::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, btBroadphaseAabbCallback& callback) {
+void Broadphase::Impl::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax,
+                                btBroadphaseAabbCallback& callback) {
     const Box<float, 3> box = detail::checked_box(aabbMin, aabbMax, "aabbTest");
     flush_moves();
     std::vector<BoxId> ids;
@@ -91,7 +92,7 @@ void Broadphase::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, bt
     }
 }
 
-void Broadphase::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const {
+void Broadphase::Impl::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const {
     constexpr float inf = std::numeric_limits<float>::infinity();
     btVector3 low(inf, inf, inf);
     btVector3 high(-inf, -inf, -inf);
@@ -108,7 +109,7 @@ void Broadphase::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const
     aabbMax = high;
 }
 
-void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
+void Broadphase::Impl::resetPool() {
     if (live_ != 0) return;
     world_.clear();
     pair_keys_ = {};
@@ -144,7 +145,7 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) {
     changed_ = true;
 }
 
-void Broadphase::printStats() {
+void Broadphase::Impl::printStats() {
     std::printf("smb::bullet::Broadphase: %zu proxies, %d pairs in the cache, %zu boxes held static, %zu bytes\n",
                 live_, cache_->getNumOverlappingPairs(),
                 static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(),

@@ -7,23 +7,13 @@
 // Exact because every proxy's box lies inside its fat box: two boxes that overlap have fat boxes
 // that overlap, so their pair is a candidate, and every candidate is tested on the boxes.
 
+#include "bullet/broadphase_impl.hpp"
 #include "bullet/proxy.hpp"
-#include "smb/bullet/broadphase.hpp"
+#include "core/tuning.hpp"
 
 namespace smb::bullet {
 
-namespace {
-
-/// A box that kept inside its fat box this many steps before leaving it creeps.
-constexpr std::uint32_t steps_before_creeping = 16;
-/// A creeping box's skin, in skins: a pile at rest creeps, each box leaving a fat box of one
-/// skin every hundred steps or so, and each box that leaves costs an index query and a pass
-/// over the candidates; a thicker skin holds it several times as long.
-constexpr float creeping_skins = 2;
-
-}  // namespace
-
-float Broadphase::next_skin(std::uint32_t id) const {
+float Broadphase::Impl::next_skin(std::uint32_t id) const {
     const Box<float, 3>& box = boxes_[id];
     const Box<float, 3>& fat = fat_boxes_[id];
     // A box that left its fat box by more than a skin moves fast and would leave any skin at the
@@ -31,10 +21,12 @@ float Broadphase::next_skin(std::uint32_t id) const {
     // drifts, and a new skin holds it for a while; longer, the thicker the skin, but a thick
     // skin on the boxes of an avalanche brings the World as many pairs again.
     if (!detail::contains(detail::grown(fat, skin_), box)) return 0;
-    return step_ - fat_since_[id] >= steps_before_creeping ? creeping_skins * skin_ : skin_;
+    return step_ - fat_since_[id] >= smb::detail::tuning::bullet_steps_before_creeping
+               ? smb::detail::tuning::bullet_creeping_skins * skin_
+               : skin_;
 }
 
-void Broadphase::flush_moves() {
+void Broadphase::Impl::flush_moves() {
     if (moved_.empty()) return;
     move_ids_.clear();
     move_boxes_.clear();
@@ -69,7 +61,7 @@ void Broadphase::flush_moves() {
     }
 }
 
-bool Broadphase::hold_pair(Proxy& a, Proxy& b) {
+bool Broadphase::Impl::hold_pair(Proxy& a, Proxy& b) {
     // Ids are the proxies' m_uniqueId, an int: they fit the partner lists' 32 bits.
     const auto id_a = static_cast<std::uint32_t>(a.m_uniqueId);
     const auto id_b = static_cast<std::uint32_t>(b.m_uniqueId);
@@ -88,18 +80,18 @@ bool Broadphase::hold_pair(Proxy& a, Proxy& b) {
     return false;
 }
 
-void Broadphase::drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher) {
+void Broadphase::Impl::drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher) {
     detail::erase_partner(a.partners, static_cast<std::uint32_t>(b.m_uniqueId));
     detail::erase_partner(b.partners, static_cast<std::uint32_t>(a.m_uniqueId));
     --pairs_held_;
     cache_->removeOverlappingPair(&a, &b, dispatcher);
 }
 
-void Broadphase::test_candidates(btDispatcher* dispatcher) {
+void Broadphase::Impl::test_candidates(btDispatcher* dispatcher) {
     for (Candidate& candidate : candidates_) test_candidate(candidate, dispatcher);
 }
 
-void Broadphase::settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher) {
+void Broadphase::Impl::settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher) {
     // The cache's callbacks may create and destroy proxies on the way: boxes_ may grow (it is
     // indexed afresh for every candidate), a destroyed proxy's box pairs with nothing and its
     // pairs left the cache with it, and a proxy created has no candidate before the next

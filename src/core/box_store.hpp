@@ -36,6 +36,10 @@ public:
     [[nodiscard]] bool alive(Slot slot) const noexcept { return alive_[slot] != 0; }
     [[nodiscard]] std::span<const box_type> boxes() const noexcept { return boxes_; }
     [[nodiscard]] std::span<const BoxId> ids() const noexcept { return ids_; }
+    /// Counts the calls that may have changed the boxes held (insert, remove, update, assign,
+    /// clear): what was built from the boxes is current while this count is unchanged. A
+    /// detection renumbers slots (compact) but keeps every id's box, so it counts nothing.
+    [[nodiscard]] std::uint64_t changes() const noexcept { return changes_; }
 
     [[nodiscard]] Slot slot_of(BoxId id) const {
         const Slot slot = slot_of_id_.find(id);
@@ -44,6 +48,7 @@ public:
     }
 
     void insert(std::span<const BoxId> ids, std::span<const box_type> boxes) {
+        ++changes_;
         require_same_length(ids.size(), boxes.size(), "insert");
         validate_boxes(ids, boxes);
         reserve_for(ids.size());
@@ -62,6 +67,7 @@ public:
     }
 
     void remove(std::span<const BoxId> ids) {
+        ++changes_;
         std::vector<Slot> slots;
         slots.reserve(ids.size());
         for (const BoxId id : ids) slots.push_back(slot_of(id));
@@ -80,6 +86,7 @@ public:
     }
 
     void update(std::span<const BoxId> ids, std::span<const box_type> boxes) {
+        ++changes_;
         require_same_length(ids.size(), boxes.size(), "update");
         validate_boxes(ids, boxes);
         // Every id is looked up twice rather than once into a list of slots: a simulation
@@ -89,6 +96,7 @@ public:
     }
 
     void assign(std::span<const box_type> boxes) {
+        ++changes_;
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             if (!is_valid(boxes[i])) throw InvalidBoxError(describe_invalid_box(static_cast<BoxId>(i), boxes[i]));
         }
@@ -114,6 +122,7 @@ public:
     }
 
     void clear() {
+        ++changes_;
         boxes_.clear();
         ids_.clear();
         alive_.clear();
@@ -233,6 +242,7 @@ private:
     IdIndex slot_of_id_;
     std::size_t removed_ = 0;
     std::vector<BoxId> removed_log_;
+    std::uint64_t changes_ = 0;
 };
 
 }  // namespace smb::detail

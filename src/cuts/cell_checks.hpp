@@ -16,6 +16,7 @@
 #include "core/ordered_rounds.hpp"
 #include "core/pair_output.hpp"
 #include "core/thread_team.hpp"
+#include "core/tuning.hpp"
 #include "cuts/cell_order.hpp"
 #include "cuts/cell_pairs.hpp"
 #include "cuts/cells.hpp"
@@ -41,7 +42,7 @@ template <std::floating_point Real, int Dim>
 class CellChecks {
 public:
     /// Pairs one column may hold while the threads check a round (4 MiB); see in_ordered_rounds().
-    static constexpr std::size_t kBlockPairCap = std::size_t{1} << 18;
+    static constexpr std::size_t kBlockPairCap = tuning::block_pair_cap;
 
     /// Reports every pair of the cells, and then of the oversized boxes, to `report` (report(a, b)
     /// for single pairs, report.append(pairs) for runs), on `threads` threads. Writes to `home`

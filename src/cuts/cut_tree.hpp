@@ -26,6 +26,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/tuning.hpp"
 #include "cuts/quantile_select.hpp"
 
 namespace smb::detail {
@@ -207,7 +208,7 @@ public:
     }
 
     /// Boxes sampled for a group's typical extent (cut_group()).
-    static constexpr std::size_t kExtentSample = 64;
+    static constexpr std::size_t kExtentSample = tuning::extent_sample;
 
     /// A group with more than twice this many keys per segment takes its quantiles from an
     /// evenly spaced sample of this many keys per segment instead of from all of them
@@ -215,7 +216,7 @@ public:
     /// real counts, and a sample of 256 per segment is within about 6% of the true quantiles. It
     /// makes the first cuts of a large world (1M boxes: 1M keys on level 0, 28k per group on level
     /// 1) several times cheaper.
-    static constexpr std::size_t kSamplePerSegment = 256;
+    static constexpr std::size_t kSamplePerSegment = tuning::sample_per_segment;
 
     /// Sets the band of a group just cut: its fullest segment may grow by half (and at least
     /// to twice the even share) before the group is cut again. Measuring the band on the fresh

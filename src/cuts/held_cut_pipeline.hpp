@@ -16,6 +16,7 @@
 #include "core/assert.hpp"
 #include "core/scene_bounds.hpp"
 #include "core/slot_renumbering.hpp"
+#include "core/tuning.hpp"
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "smb/box.hpp"
 #include "smb/held_precision.hpp"
@@ -139,7 +140,7 @@ private:
 
     [[nodiscard]] bool uses_rounded() const noexcept { return kMayRound && precision_ == HeldPrecision::floats; }
 
-    static constexpr std::size_t kJudgeEvery = 64;
+    static constexpr std::size_t kJudgeEvery = tuning::judge_precision_every;
 
     ExactPipeline exact_;
     RoundedPipeline rounded_;

@@ -19,6 +19,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/tuning.hpp"
+
 namespace smb::detail {
 
 /// The unsigned integer as wide as Real, whose order on radix_key() images is Real's order.
@@ -55,7 +57,7 @@ public:
     /// by 6×), uniform floats, k = max(2, n / 24) (bench/bench_quantiles.cpp, medians of three):
     /// 64 keys 0.08 µs against 0.71 µs for the radix sort; 128 keys 2.9 against 0.94; 1000 keys
     /// 42 against 4.4 (double: 41 against 9.4).
-    static constexpr std::size_t kRadixFrom = 128;
+    static constexpr std::size_t kRadixFrom = tuning::quantile_radix_from;
 
     /// out[j-1] = the key of rank min(n-1, floor(j n / segments)) for j in [1, segments).
     void select(std::uint32_t segments, Real* out) {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/growth.hpp"
+#include "core/tuning.hpp"
 #include "smb/errors.hpp"
 #include "smb/pair.hpp"
 
@@ -72,7 +73,7 @@ template <class X, class Y>
 
 /// About this many pairs per partition: their table (32 slots a pair, 4 bytes a slot) and the
 /// pairs themselves fit in a core's L2 cache.
-inline constexpr std::size_t kPairsPerPartition = 1024;
+inline constexpr std::size_t kPairsPerPartition = tuning::pairs_per_partition;
 inline constexpr int kMaxPartitionBits = 24;
 
 /// The partition bits for `count` pairs: the fewest that leave about kPairsPerPartition each.
@@ -155,7 +156,7 @@ struct PairPartitions {
         if (source.size() >= UINT32_MAX)
             throw ArgumentError("PairEvents::update: at most " + std::to_string(UINT32_MAX - 1) + " pairs");
         const int new_bits = partition_bits_for(source.size());
-        constexpr std::size_t kPairsPerThread = std::size_t{1} << 16;
+        constexpr std::size_t kPairsPerThread = tuning::event_pairs_per_thread;
         if ((threads <= 1 || source.size() < 2 * kPairsPerThread) && assign_gapped(source, new_bits, watch)) return;
         assign_counted(source, threads, new_bits, watch);
     }
@@ -195,7 +196,9 @@ private:
         const std::size_t parts = std::size_t{1} << new_bits;
         const std::size_t n = source.size();
         const std::size_t mean = (n >> new_bits) + 1;
-        const auto room = mean + 4 * static_cast<std::size_t>(std::sqrt(static_cast<double>(mean))) + 16;
+        const auto room =
+            mean + tuning::partition_slack_deviations * static_cast<std::size_t>(std::sqrt(static_cast<double>(mean))) +
+            16;
         if (parts * room >= UINT32_MAX) return false;
         bits = new_bits;
         is_packed = true;
@@ -251,7 +254,7 @@ private:
         };
         const std::size_t parts = std::size_t{1} << new_bits;
         const std::size_t n = source.size();
-        constexpr std::size_t kPairsPerThread = std::size_t{1} << 16;
+        constexpr std::size_t kPairsPerThread = tuning::event_pairs_per_thread;
         const int team = std::max(1, std::min(threads, static_cast<int>(n / kPairsPerThread)));
         const auto share = [&](int t) {
             return std::pair{n * static_cast<std::size_t>(t) / static_cast<std::size_t>(team),

@@ -25,6 +25,7 @@
 #include <cstring>
 #include <limits>
 
+#include "core/tuning.hpp"
 #include "filters/float_bounds.hpp"
 #include "smb/box.hpp"
 
@@ -39,7 +40,7 @@ using QuantBox = std::array<std::int16_t, 2 * Dim>;
 template <int Dim>
 class Lattice {
 public:
-    static constexpr double kTop = 32767;
+    static constexpr double kTop = tuning::static_lattice_top;
 
     /// Lattice steps per unit on each axis: kTop over the fat box's side, as a float (any
     /// positive value serves, the same for the copies and the tested box).

@@ -22,6 +22,7 @@
 #include <span>
 #include <vector>
 
+#include "core/tuning.hpp"
 #include "smb/box.hpp"
 
 namespace smb::detail {
@@ -55,7 +56,7 @@ public:
         // the smaller set marks only the cells near it. Marking by a large box costs as many
         // cells as it covers: past a few passes over the boxes, a grid half as fine is tried,
         // and with none left the grid is given up (what the region kept stays).
-        constexpr std::size_t cap = Dim == 2 ? 2048 : 160;
+        constexpr std::size_t cap = Dim == 2 ? tuning::join_cull_cells_2d : tuning::join_cull_cells_3d;
         auto per_axis = static_cast<std::size_t>(std::pow(static_cast<double>(large.size()), 1.0 / Dim));
         std::size_t budget = 0;
         for (per_axis = std::clamp<std::size_t>(per_axis, 1, cap);; per_axis /= 2) {

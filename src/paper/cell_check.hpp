@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "core/tuning.hpp"
 #include "paper/axis_entry.hpp"
 #include "paper/global_local_map.hpp"
 #include "paper/mask_array.hpp"
@@ -34,7 +35,7 @@ template <std::floating_point Real, int Dim>
 class CellChecker {
 public:
     /// Above this many boxes a cell is checked without the flag matrix.
-    static constexpr std::size_t kMatrixMaxBoxes = 256;
+    static constexpr std::size_t kMatrixMaxBoxes = tuning::paper_matrix_max_boxes;
 
     /// The sorted corner lists of one cell: levels 0 .. Dim-2 regrouped from the upper lists,
     /// and the cell's own range of the deepest list.

@@ -1,7 +1,15 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The hierarchy of uniform grids behind smb::BoxIndex (see box_index.hpp for the layout), its
-// build and its box query. The ray walk is in grid_ray.hpp.
+// The one grid of smb: a hierarchy of uniform grids, behind smb::BoxIndex (a World's queries)
+// and the statics of a filtered World (filters/static_grid.hpp). Each box sits on the finest
+// level whose cell is at least its largest extent, so it reaches at most one cell past the cell
+// of its lower corner (its home cell). The boxes are sorted by (level, home cell): a cell's boxes
+// are one contiguous run, and a row of cells along the first axis is one run too. A box query
+// visits, on each level, the home cells from its lower corner less the level's widest box up to
+// its upper corner, row by row, and reads each box once: no box is listed twice, and nothing is
+// reported twice. A box too large for every level (the scene's extent overflows, or 64 levels do
+// not reach it) sits on the coarsest, whose reach then covers it. The ray walk is in
+// grid_ray.hpp.
 
 #include <algorithm>
 #include <array>
@@ -14,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "core/tuning.hpp"
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
 #include "smb/pair.hpp"
@@ -27,6 +36,7 @@ struct GridLevel {
     double inv = 1;                     // 1 / side
     std::array<std::int64_t, Dim> n{};  // cells per axis
     std::size_t first_cell = 0;         // of this level in GridIndex::cell_start
+    std::array<double, Dim> reach{};    // at least the widest box of the level, per axis
 };
 
 /// The cell of grid coordinate g on an axis of n cells. Clamping keeps the scene's boxes (which
@@ -43,24 +53,29 @@ class GridIndex {
 public:
     using box_type = Box<Real, Dim>;
 
-    // The state, read by the ray walk. Boxes and ids are in cell order (level, then cell of the
-    // lower corner), so the boxes of one cell lie close together in memory.
+    // The state, read by the ray walk. Boxes and ids are in home-cell order (level, then the
+    // cell of the lower corner).
     std::vector<box_type> boxes;
     std::vector<BoxId> ids;
     std::vector<GridLevel<Dim>> levels;     // the non-empty levels, finest first
-    std::vector<std::uint32_t> cell_start;  // entries of cell c: entries[cell_start[c], cell_start[c+1])
-    std::vector<std::uint32_t> entries;     // positions in boxes
+    std::vector<std::uint32_t> cell_start;  // boxes of home cell c: [cell_start[c], cell_start[c+1])
     std::array<double, Dim> origin{};       // the scene's lower corner: the grids' origin
     std::array<double, Dim> upper{};        // the scene's upper corner
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return boxes.capacity() * sizeof(box_type) + ids.capacity() * sizeof(BoxId) +
-               levels.capacity() * sizeof(GridLevel<Dim>) + cell_start.capacity() * sizeof(std::uint32_t) +
-               entries.capacity() * sizeof(std::uint32_t);
+               levels.capacity() * sizeof(GridLevel<Dim>) + cell_start.capacity() * sizeof(std::uint32_t);
     }
 
     [[nodiscard]] std::int64_t cell_of(double v, int k, const GridLevel<Dim>& level) const noexcept {
         return clamped_cell((v - origin[k]) * level.inv, level.n[k]);
+    }
+
+    /// The lowest home cell, on axis k, of a box of `level` that reaches down to v: its lower
+    /// corner is at least v less the level's reach, rounded down here, and cell_of never
+    /// decreases.
+    [[nodiscard]] std::int64_t home_from(double v, int k, const GridLevel<Dim>& level) const noexcept {
+        return cell_of(std::nextafter(v - level.reach[k], -std::numeric_limits<double>::infinity()), k, level);
     }
 
     /// Indexes boxes[i] under id_of(i) for every i with keep(i); the boxes must be valid.
@@ -80,9 +95,9 @@ public:
         index_boxes();
     }
 
-    /// Calls emit(id) for every box overlapping q, each once.
+    /// Calls emit(position) for every box overlapping q (closed overlap), each once.
     template <class Emit>
-    void query(const box_type& q, Emit&& emit) const {
+    void query_positions(const box_type& q, Emit&& emit) const {
         if (boxes.empty()) return;
         for (int k = 0; k < Dim; ++k) {
             if (q.min[k] > upper[k] || q.max[k] < origin[k]) return;
@@ -91,41 +106,40 @@ public:
             std::array<std::int64_t, Dim> lo{};
             std::array<std::int64_t, Dim> hi{};
             for (int k = 0; k < Dim; ++k) {
-                lo[k] = cell_of(q.min[k], k, level);
-                hi[k] = cell_of(q.max[k], k, level);
+                lo[k] = home_from(static_cast<double>(q.min[k]), k, level);
+                hi[k] = cell_of(static_cast<double>(q.max[k]), k, level);
             }
-            for_cells(lo, hi, level, [&](std::size_t cell, const std::array<std::int64_t, Dim>& c) {
-                for (std::size_t e = cell_start[cell]; e < cell_start[cell + 1]; ++e) {
-                    const box_type& b = boxes[entries[e]];
-                    if (!overlaps(q, b)) continue;
-                    // A box listed in several cells of the range is reported from the first cell
-                    // of the range it is listed in: on each axis, the larger of the two lower cells.
-                    bool first = true;
-                    for (int k = 0; k < Dim && first; ++k) {
-                        first = c[k] == lo[k] || c[k] == cell_of(b.min[k], k, level);
-                    }
-                    if (first) emit(ids[entries[e]]);
+            for_rows(lo, hi, level, [&](std::size_t first_cell, std::size_t last_cell) {
+                for (std::uint32_t p = cell_start[first_cell]; p < cell_start[last_cell + 1]; ++p) {
+                    if (overlaps(q, boxes[p])) emit(p);
                 }
             });
         }
     }
 
-    /// Calls visit(cell, coordinates) for every cell of `level` in [lo, hi] (inclusive), x fastest.
-    template <class Visit>
-    static void for_cells(const std::array<std::int64_t, Dim>& lo, const std::array<std::int64_t, Dim>& hi,
-                          const GridLevel<Dim>& level, Visit&& visit) {
-        std::array<std::int64_t, Dim> c{};
+    /// Calls emit(id) for every box overlapping q, each once.
+    template <class Emit>
+    void query(const box_type& q, Emit&& emit) const {
+        query_positions(q, [&](std::uint32_t p) { emit(ids[p]); });
+    }
+
+    /// Calls run(first, last) for every row of cells of `level` in [lo, hi] (inclusive): the
+    /// cells first to last along the first axis.
+    template <class Run>
+    static void for_rows(const std::array<std::int64_t, Dim>& lo, const std::array<std::int64_t, Dim>& hi,
+                         const GridLevel<Dim>& level, Run&& run) {
+        const auto x0 = static_cast<std::size_t>(lo[0]);
+        const auto x1 = static_cast<std::size_t>(hi[0]);
         if constexpr (Dim == 2) {
-            for (c[1] = lo[1]; c[1] <= hi[1]; ++c[1]) {
-                const auto row = level.first_cell + static_cast<std::size_t>(c[1] * level.n[0]);
-                for (c[0] = lo[0]; c[0] <= hi[0]; ++c[0]) visit(row + static_cast<std::size_t>(c[0]), c);
+            for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+                const auto row = level.first_cell + static_cast<std::size_t>(y * level.n[0]);
+                run(row + x0, row + x1);
             }
         } else {
-            for (c[2] = lo[2]; c[2] <= hi[2]; ++c[2]) {
-                for (c[1] = lo[1]; c[1] <= hi[1]; ++c[1]) {
-                    const auto row =
-                        level.first_cell + static_cast<std::size_t>((c[2] * level.n[1] + c[1]) * level.n[0]);
-                    for (c[0] = lo[0]; c[0] <= hi[0]; ++c[0]) visit(row + static_cast<std::size_t>(c[0]), c);
+            for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+                for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+                    const auto row = level.first_cell + static_cast<std::size_t>((z * level.n[1] + y) * level.n[0]);
+                    run(row + x0, row + x1);
                 }
             }
         }
@@ -135,7 +149,7 @@ private:
     /// The finest cell side: the boxes' mean largest extent, made coarser until the finest grid
     /// has at most about 2N cells (so sparse scenes and point-like boxes cost O(N) memory).
     [[nodiscard]] double finest_side(double mean_extent) const {
-        const double cap = 2.0 * static_cast<double>(boxes.size()) + 16.0;
+        const double cap = tuning::grid_cells_per_box * static_cast<double>(boxes.size()) + 16.0;
         double span = 0;
         for (int k = 0; k < Dim; ++k) span = std::max(span, upper[k] - origin[k]);
         if (!(span > 0) || !std::isfinite(span)) return 1;
@@ -148,14 +162,13 @@ private:
             double cells = 1;
             for (int k = 0; k < Dim; ++k) cells *= std::max(1.0, std::ceil((upper[k] - origin[k]) / side));
             if (cells <= cap) return side;
-            side *= 1.25;
+            side *= tuning::grid_side_growth;
         }
     }
 
     void index_boxes() {
         levels.clear();
         cell_start.clear();
-        entries.clear();
         const std::size_t n = boxes.size();
         if (n == 0) return;
         origin.fill(std::numeric_limits<double>::infinity());
@@ -215,61 +228,35 @@ private:
             levels.push_back(level);
         }
 
-        // Counting sort of the boxes by (level, cell of the lower corner).
+        // Counting sort of the boxes by (level, home cell); the counts become cell_start.
         if (cells >= std::numeric_limits<std::uint32_t>::max()) throw ArgumentError("BoxIndex: too many cells");
         std::vector<std::uint32_t> cell_key(n);
-        std::vector<std::uint32_t> start(cells + 1, 0);
+        cell_start.assign(cells + 1, 0);
         for (std::size_t i = 0; i < n; ++i) {
-            const auto& level = levels[static_cast<std::size_t>(slot_of_level[level_of[i]])];
+            auto& level = levels[static_cast<std::size_t>(slot_of_level[level_of[i]])];
             std::size_t c = 0;
             for (int k = Dim - 1; k >= 0; --k)
                 c = c * static_cast<std::size_t>(level.n[k]) +
                     static_cast<std::size_t>(cell_of(boxes[i].min[k], k, level));
+            for (int k = 0; k < Dim; ++k) {
+                const double width = static_cast<double>(boxes[i].max[k]) - static_cast<double>(boxes[i].min[k]);
+                level.reach[k] =
+                    std::max(level.reach[k], std::nextafter(width, std::numeric_limits<double>::infinity()));
+            }
             cell_key[i] = static_cast<std::uint32_t>(level.first_cell + c);
-            ++start[cell_key[i] + 1];
-            level_of[i] = static_cast<std::uint8_t>(slot_of_level[level_of[i]]);
+            ++cell_start[cell_key[i] + 1];
         }
-        for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+        for (std::size_t c = 0; c < cells; ++c) cell_start[c + 1] += cell_start[c];
+        std::vector<std::uint32_t> next(cell_start.begin(), cell_start.end() - 1);
         std::vector<box_type> sorted_boxes(n);
         std::vector<BoxId> sorted_ids(n);
-        std::vector<std::uint8_t> sorted_levels(n);
         for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t to = start[cell_key[i]]++;
+            const std::size_t to = next[cell_key[i]]++;
             sorted_boxes[to] = boxes[i];
             sorted_ids[to] = ids[i];
-            sorted_levels[to] = level_of[i];
         }
         boxes.swap(sorted_boxes);
         ids.swap(sorted_ids);
-
-        // Every box listed in every cell it overlaps on its level (counting sort again; the boxes
-        // are visited in order, so each cell lists its boxes in ascending position).
-        cell_start.assign(cells + 1, 0);
-        auto each_cell = [&](std::size_t i, auto&& f) {
-            const auto& level = levels[sorted_levels[i]];
-            std::array<std::int64_t, Dim> lo{};
-            std::array<std::int64_t, Dim> hi{};
-            for (int k = 0; k < Dim; ++k) {
-                lo[k] = cell_of(boxes[i].min[k], k, level);
-                hi[k] = cell_of(boxes[i].max[k], k, level);
-            }
-            for_cells(lo, hi, level, [&](std::size_t cell, const auto&) { f(cell); });
-        };
-        // Counts in cell_start[c], summed to each cell's end, then filled backwards so that each
-        // ends at its start: no second array of offsets.
-        std::uint64_t total = 0;
-        for (std::size_t i = 0; i < n; ++i) each_cell(i, [&](std::size_t cell) { ++cell_start[cell]; });
-        for (std::size_t c = 0; c < cells; ++c) {
-            total += cell_start[c];
-            if (total >= std::numeric_limits<std::uint32_t>::max())
-                throw ArgumentError("BoxIndex: more than 2^32 - 2 cell entries");
-            cell_start[c] = static_cast<std::uint32_t>(total);
-        }
-        cell_start[cells] = static_cast<std::uint32_t>(total);
-        entries.resize(total);
-        for (std::size_t i = n; i-- > 0;) {
-            each_cell(i, [&](std::size_t cell) { entries[--cell_start[cell]] = static_cast<std::uint32_t>(i); });
-        }
     }
 };
 

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The ray walk of smb::BoxIndex: on each level, the cells a ray crosses, slab by slab along its
-// dominant axis. Every cell is found with a margin (a millionth of a cell, more far from the
+// dominant axis, and the home cells of the boxes that reach into them (a box's home cell is that
+// of its lower corner: down to the level's reach below the cells crossed). A box is tested in
+// the slab where the ray enters it, or earlier. Every cell is found with a margin (a millionth of a cell, more far from the
 // grid's origin, where rounding is coarser), so that a box the exact test (smb::ray_entry)
 // accepts is always a candidate, even for rays along cell boundaries or box faces.
 
@@ -40,9 +42,8 @@ template <std::floating_point Real, int Dim, class Hit, class Best>
 void walk_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, bool nearest, Hit&& hit, Best&& best) {
     if (grid.boxes.empty()) return;
     const double max_t = static_cast<double>(ray.max_t);
-    auto test_cell = [&](std::size_t cell) {
-        for (std::size_t e = grid.cell_start[cell]; e < grid.cell_start[cell + 1]; ++e) {
-            const std::uint32_t p = grid.entries[e];
+    auto test_cells = [&](std::size_t first_cell, std::size_t last_cell) {
+        for (std::uint32_t p = grid.cell_start[first_cell]; p < grid.cell_start[last_cell + 1]; ++p) {
             // The order of hits is that of the reported t, rounded to Real, so that (t, id) order
             // holds for what the caller sees.
             if (const auto t = ray_entry(ray, grid.boxes[p]))
@@ -60,7 +61,7 @@ void walk_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, bool 
         std::int64_t cells = 1;
         for (int k = 0; k < Dim; ++k) cells *= level.n[k];
         if (cells == 1) {  // nothing to walk (and no geometry where the scene's extent overflows)
-            test_cell(level.first_cell);
+            test_cells(level.first_cell, level.first_cell);
             continue;
         }
         // The ray in this level's grid coordinates, where cell c spans [c, c + 1) on each axis.
@@ -79,9 +80,12 @@ void walk_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, bool 
         bool finite = std::isfinite(magnitude);
         for (int k = 0; k < Dim; ++k) finite = finite && std::isfinite(gd[k]);
         if (!finite) {  // a ray from near one end of double's range to a scene near the other
-            for (std::int64_t c = 0; c < cells; ++c) test_cell(level.first_cell + static_cast<std::size_t>(c));
+            test_cells(level.first_cell, level.first_cell + static_cast<std::size_t>(cells) - 1);
             continue;
         }
+        // The level's reach in cells: a box reaches at most this far above its home cell.
+        std::array<double, Dim> reach{};
+        for (int k = 0; k < Dim; ++k) reach[k] = level.reach[k] * level.inv;
         // The margin, in cells: far more than the rounding of the grid coordinates and of the
         // exact test, both relative to the coordinates' magnitude.
         const double w = 1e-6 + 1e-12 * (magnitude + static_cast<double>(cells_across));
@@ -92,11 +96,10 @@ void walk_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, bool 
             bool inside = true;
             for (int k = 0; k < Dim; ++k) {
                 inside = inside && go[k] + w >= 0 && go[k] - w <= static_cast<double>(level.n[k]);
-                lo[k] = clamped_cell(go[k] - w, level.n[k]);
+                lo[k] = clamped_cell(go[k] - w - reach[k], level.n[k]);
                 hi[k] = clamped_cell(go[k] + w, level.n[k]);
             }
-            if (inside)
-                GridIndex<Real, Dim>::for_cells(lo, hi, level, [&](std::size_t cell, const auto&) { test_cell(cell); });
+            if (inside) GridIndex<Real, Dim>::for_rows(lo, hi, level, test_cells);
             continue;
         }
 
@@ -136,16 +139,16 @@ void walk_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, bool 
             if (beyond_best(ta)) break;
             std::array<std::int64_t, Dim> lo{};
             std::array<std::int64_t, Dim> hi{};
-            lo[a] = s;
+            lo[a] = clamped_cell(static_cast<double>(s) - w - reach[a], level.n[a]);
             hi[a] = s;
             for (int k = 0; k < Dim; ++k) {
                 if (k == a) continue;
                 const double pa = go[k] + ta * gd[k];
                 const double pb = go[k] + tb * gd[k];
-                lo[k] = clamped_cell(std::min(pa, pb) - w, level.n[k]);
+                lo[k] = clamped_cell(std::min(pa, pb) - w - reach[k], level.n[k]);
                 hi[k] = clamped_cell(std::max(pa, pb) + w, level.n[k]);
             }
-            GridIndex<Real, Dim>::for_cells(lo, hi, level, [&](std::size_t cell, const auto&) { test_cell(cell); });
+            GridIndex<Real, Dim>::for_rows(lo, hi, level, test_cells);
             if (s == s_last) break;
         }
     }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The radix sort of the detection's pair keys in smb::bullet (src/bullet/pair_keys.hpp) against
+// The radix sort of pair keys (src/core/pair_key_sort.hpp), as smb::bullet calls it, against
 // std::sort: keys of 2 to 62 bits (two to four passes), lists below and above the size where the
 // radix sort takes over, keys that share digits (passes skipped), repeated keys.
 
@@ -10,11 +10,11 @@
 #include <random>
 #include <vector>
 
-#include "bullet/pair_keys.hpp"
+#include "core/pair_key_sort.hpp"
 
 namespace {
 
-using smb::bullet::detail::sort_pair_keys;
+using smb::detail::sort_pair_keys;
 
 std::vector<std::uint64_t> random_keys(std::size_t count, int bits, std::uint64_t shared, std::mt19937_64& random) {
     const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The tuning constants of every part, in one place, each with the reason for its value. A
+// constant here changes speed or memory, never the pairs: every value keeps the detection
+// exact. Limits that the data layout imposes (bits in a packed key, lanes in a register) stay
+// beside the code they bound; so do prefetch distances, which belong to one loop each.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "smb/settings.hpp"
+
+namespace smb::detail::tuning {
+
+// --- The axial cuts (src/cuts/) --------------------------------------------------------------
+
+/// Boxes the cuts aim to put in one cell (the public default of
+/// DetectionSettings::target_cell_population): 16, 20, 24 and 32 gave steps within 1% of one
+/// another at 1M boxes (docs/algorithm.md, "Design decisions").
+inline constexpr std::size_t cell_population = 24;
+static_assert(DetectionSettings{}.target_cell_population == cell_population);
+/// Cells of up to this many registered boxes test every pair; past it they are swept. Testing
+/// every pair is faster than the sweep at the cells' usual ~46 boxes and still at ~130 (a target
+/// population of 64); its cost grows as m^2 / 16 lane groups, so crowds are swept.
+inline constexpr std::size_t all_pairs_limit = 128;
+/// Pairs one column may hold while the threads check a round (4 MiB a thread): a column that
+/// would make more (a pair explosion) is checked again on the calling thread straight into the
+/// report, so that the threads' buffers stay bounded whatever the output.
+inline constexpr std::size_t block_pair_cap = std::size_t{1} << 18;
+/// Boxes sampled for a group's typical extent: enough to place the band, cheap on every group.
+inline constexpr std::size_t extent_sample = 64;
+/// A group with more than twice this many keys per segment takes its quantiles from a sample of
+/// this many keys per segment: within about 6% of the true quantiles, and the band is measured
+/// on the real counts, so the first cuts of a 1M-box world are several times cheaper.
+inline constexpr std::size_t sample_per_segment = 256;
+/// Below this many keys the recursive quantile selection beats the radix sort (128 keys: 2.9 µs
+/// against 0.94 µs; 64 keys: 0.08 against 0.71; bench/bench_quantiles.cpp).
+inline constexpr std::size_t quantile_radix_from = 128;
+/// Detections between two judgements of floats against doubles in a held scene: a scene of
+/// points may grow into boxes; judging costs a pass over the boxes, one in 64 is noise.
+inline constexpr std::size_t judge_precision_every = 64;
+
+// --- The skin (src/skin/, detector_state.hpp, periodic_path.hpp) -----------------------------
+
+/// Detections the cuts run after the skin stepped aside (too much motion) before the skin tries
+/// again: a failed retry costs one rebuild, paid at most once in 64 detections.
+inline constexpr std::size_t skin_pause = 64;
+/// The moved list is tested against every fresh box: past max(64, n / 64) entries a rebuild of
+/// the cells costs less than those tests.
+inline constexpr std::size_t moved_limit_floor = 64;
+inline constexpr std::size_t moved_limit_divisor = 64;
+/// Fewer detections than this between two rebuilds of the candidates make a short life: the
+/// skin is too thin for the motion, and the pipelines detect instead.
+inline constexpr std::size_t short_skin_life = 4;
+/// The fat boxes may make at most this many candidates per box (plus 2^20) before the skin
+/// steps aside: fat boxes that crowded are too fat for the scene, and the candidates' memory and
+/// tests outgrow a detection without them.
+inline constexpr std::size_t skin_candidates_per_box = 32;
+/// Candidates below which a candidate pass runs on one thread (a fork costs more than the pass),
+/// and the candidates of one thread's block when it does not.
+inline constexpr std::size_t skin_parallel_from = std::size_t{1} << 15;
+inline constexpr std::size_t skin_block_candidates = std::size_t{1} << 15;
+
+// --- Statics and filters (src/filters/) ------------------------------------------------------
+
+/// A moving box's cached statics are held on a lattice of 16-bit steps over its fat box: a copy
+/// is a quarter of the float box, and the lattice test tells nearly every static apart.
+inline constexpr double static_lattice_top = 32767;
+/// Detections between two looks at the filter values once they overflowed the classes' table:
+/// they may have become fewer, and counting them costs a pass over the boxes.
+inline constexpr std::size_t filter_classes_every = 64;
+
+// --- The grid (src/query/grid_index.hpp: the queries' index and the statics') ----------------
+
+/// The finest level has at most this many cells per box (plus 16): memory O(N) whatever the
+/// region, and cells near the mean box where the boxes fill it.
+inline constexpr double grid_cells_per_box = 2;
+/// The finest side grows by this factor until the finest level fits in its cell budget: fine
+/// steps keep the cells near the mean box.
+inline constexpr double grid_side_growth = 1.25;
+/// Moving boxes with no size get a skin of an eighth of this many finest cells of the statics'
+/// grid (about twice the mean static), so that a point does not refresh its statics every step.
+inline constexpr double static_cell_in_means = 2;
+
+// --- Pair keys and events (src/core/pair_key_sort.hpp, src/events/) --------------------------
+
+/// Below this many pairs std::sort beats the radix sort's fixed passes over its counts.
+inline constexpr std::size_t radix_sort_from = 2048;
+/// The widest digit of the pair keys' radix sort. A pass scatters the keys to as many places as
+/// its digit has values: at 10 bits those stay in a core's cache, at 14 they miss, which costs
+/// more than the pass saved. A 40-bit key (a million names) takes four passes of 10 bits: 1.6M
+/// random keys in 26 ms against 46 ms in three of 14, 50k keys of 28 bits alike (0.69 and 0.72 ms).
+inline constexpr int radix_digit_bits = 11;
+/// About this many pairs per partition of the events' diff: their table (32 slots a pair, 4
+/// bytes a slot) and the pairs themselves fit in a core's L2 cache.
+inline constexpr std::size_t pairs_per_partition = 1024;
+/// The gapped layout gives each partition its mean plus this many standard deviations (the hash
+/// spreads pairs as a Poisson process would); the rare overflow goes to a spill list.
+inline constexpr std::size_t partition_slack_deviations = 4;
+/// Pairs per thread below which the events lay out the list on one thread.
+inline constexpr std::size_t event_pairs_per_thread = std::size_t{1} << 16;
+
+// --- The Bullet back end (src/bullet/) -------------------------------------------------------
+
+/// A proxy that kept inside its fat box this many steps before leaving it creeps.
+inline constexpr std::uint32_t bullet_steps_before_creeping = 16;
+/// A creeping proxy's skin, in skins: a pile at rest creeps, each box leaving a fat box of one
+/// skin every hundred steps or so, and each box that leaves costs an index query and a pass over
+/// the candidates; a thicker skin holds it several times as long.
+inline constexpr float bullet_creeping_skins = 2;
+/// A static-class proxy that moved is held dynamic until it has kept still this many steps, so
+/// that a kinematic body pushed every step does not make smb index its statics again each step.
+inline constexpr std::uint32_t bullet_steps_before_static = 8;
+
+// --- The paper's pipeline (src/paper/) -------------------------------------------------------
+
+/// Above this many boxes a cell is checked by the sweep alone, not the paper's flag matrix: the
+/// matrix costs m^2 bytes, and such a crowd (boxes sharing one coordinate, which no cut splits)
+/// costs the sweep only what its output costs.
+inline constexpr std::size_t paper_matrix_max_boxes = 256;
+
+// --- Joins (src/join/) -----------------------------------------------------------------------
+
+/// Most cells per axis of the grid that culls the larger set of a join: past it the marking by
+/// large boxes costs more than the cull saves (2D: 2048, 3D: 160, about four million cells).
+inline constexpr std::size_t join_cull_cells_2d = 2048;
+inline constexpr std::size_t join_cull_cells_3d = 160;
+
+}  // namespace smb::detail::tuning
