@@ -128,9 +128,10 @@ TYPED_TEST(CellPairsTest, AllPairsAndSweepReportTheSamePairsOnce) {
     constexpr std::size_t limit = CellPairs<Real, Dim>::kAllPairsLimit;
     std::mt19937_64 random(17 + Dim);
     CellPairs<Real, Dim> cell_pairs;  // one object throughout: its buffers are reused, as in the pipeline
+    // 1200 boxes pass tens of thousands of pairs: the sweep hands its hit list on many times.
     for (const std::size_t m :
          {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{8}, std::size_t{9},
-          std::size_t{31}, limit - 1, limit, limit + 1, std::size_t{300}, std::size_t{2500}}) {
+          std::size_t{31}, limit - 1, limit, limit + 1, std::size_t{300}, std::size_t{1200}}) {
         for (int trial = 0; trial < 6; ++trial) {
             SCOPED_TRACE(::testing::Message() << "m " << m << ", trial " << trial);
             const Cell<Real, Dim> cell = random_cell<Real, Dim>(random, m);
