@@ -183,9 +183,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     plan_segments(n, settings);
     threads_ = thread_count(settings);
     // A cold order (first detection, new cut counts) scatters each cell's boxes over the
-    // ordered array. The check then reads them out of order, prefetched: renumbering them in
-    // cell order first (a second copy of every box) costs more than it saves, since cells are
-    // checked by testing every pair.
+    // ordered array. The check then reads them out of order: renumbering them in cell order
+    // first (a second copy of every box) costs more than it saves, since a cell copies its
+    // boxes out into arrays of its own before it tests them.
     const bool cold = order_state_ == OrderState::fresh || cuts_.segments() != segments_before;
     // In a cold order the previous entry says nothing of the next one's segment. Boxes that
     // jumped far since the last step are left to the hint's judgement, which counts the misses.
