@@ -128,8 +128,10 @@ TYPED_TEST(CellPairsTest, AllPairsAndSweepReportTheSamePairsOnce) {
     constexpr std::size_t limit = CellPairs<Real, Dim>::kAllPairsLimit;
     std::mt19937_64 random(17 + Dim);
     CellPairs<Real, Dim> cell_pairs;  // one object throughout: its buffers are reused, as in the pipeline
-    for (const std::size_t m : {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{8},
-                                std::size_t{9}, std::size_t{31}, limit - 1, limit, limit + 1, std::size_t{300}}) {
+    // 1200 boxes pass tens of thousands of pairs: the sweep hands its hit list on many times.
+    for (const std::size_t m :
+         {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{8}, std::size_t{9},
+          std::size_t{31}, limit - 1, limit, limit + 1, std::size_t{300}, std::size_t{1200}}) {
         for (int trial = 0; trial < 6; ++trial) {
             SCOPED_TRACE(::testing::Message() << "m " << m << ", trial " << trial);
             const Cell<Real, Dim> cell = random_cell<Real, Dim>(random, m);
@@ -153,6 +155,22 @@ TYPED_TEST(CellPairsTest, AllPairsAndSweepReportTheSamePairsOnce) {
             EXPECT_TRUE(std::is_sorted(swept.home.begin(), swept.home.end(), [&](std::uint32_t a, std::uint32_t b) {
                 return cell.boxes[a].min[0] < cell.boxes[b].min[0];
             })) << "home boxes in x order";
+            // What a column's queries lean on (Cells::widest): every box once, in x order, none
+            // wider along x than the bound.
+            std::vector<std::uint32_t> swept_positions(cell_pairs.swept_positions().begin(),
+                                                       cell_pairs.swept_positions().end());
+            EXPECT_TRUE(std::is_sorted(
+                swept_positions.begin(), swept_positions.end(),
+                [&](std::uint32_t a, std::uint32_t b) { return cell.boxes[a].min[0] < cell.boxes[b].min[0]; }));
+            for (const std::uint32_t position : swept_positions) {
+                const Box<Real, Dim>& box = cell.boxes[position];
+                EXPECT_GE(cell_pairs.widest_x(), box.max[0] - box.min[0]);
+                EXPECT_GE(box.min[0] + cell_pairs.widest_x(), box.max[0]);
+            }
+            std::sort(swept_positions.begin(), swept_positions.end());
+            std::vector<std::uint32_t> sorted_entries(cell.entries);
+            std::sort(sorted_entries.begin(), sorted_entries.end());
+            EXPECT_EQ(swept_positions, sorted_entries);
             std::vector<std::uint32_t> swept_home = swept.home;
             std::sort(swept_home.begin(), swept_home.end());
             std::sort(home.begin(), home.end());

@@ -32,6 +32,7 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim, class Order, class Confirm>
 struct CheckedCells {
     Cells<Real, Dim> cells;
+    SweptColumns<Real> columns;  // not empty: every cell is a column, swept and written back
     std::span<const Position> oversized;
     std::span<const Box<Real, Dim>> boxes;
     const Order& order;
@@ -200,6 +201,16 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
             }
         }
         const std::span<const Position> entries(cells.data() + first, size);
+        if (!checked.columns.entries.empty()) {
+            // Swept at every size, so that every column is left in x order for its queries.
+            moves +=
+                own_ids ? cell_pairs.check_by_sweep(entries, boxes, ids, checked.cells.floor_of(cell), collect, home)
+                        : cell_pairs.check_by_sweep(entries, boxes, slots, checked.cells.floor_of(cell), collect, home);
+            const std::span<const std::uint32_t> sorted = cell_pairs.swept_positions();
+            std::copy(sorted.begin(), sorted.end(), checked.columns.entries.begin() + first);
+            checked.columns.widest[cell] = cell_pairs.widest_x();
+            continue;
+        }
         moves += own_ids ? cell_pairs.check(entries, boxes, ids, checked.cells.floor_of(cell), collect, home)
                          : cell_pairs.check(entries, boxes, slots, checked.cells.floor_of(cell), collect, home);
     }

@@ -5,15 +5,17 @@
 // per coordinate (as floats, cell_scratch.hpp), so that the check reads small contiguous arrays,
 // eight candidates at a time (cell_rows.hpp).
 //
-// - Up to kAllPairsLimit boxes (nearly every cell: the cuts aim at about 24 boxes a cell, about
-//   46 registered in 3D): every pair is tested, in the order the boxes were registered. No keys,
-//   no sort, and loops whose lengths do not depend on the boxes' sizes, which a sweep's scan
-//   does, at one mispredicted exit per box. The hits are written down without a branch (a
-//   compress through a permutation table) and reported after the rows.
-// - Beyond (a crowd the cuts cannot split, or a large target population): the boxes get local
-//   numbers (the global-local map of the paper), are sorted on x by DIS with one increment (the
-//   list arrives almost sorted: it follows last step's order), and are swept on x with direct
-//   tests on the other axes.
+// - Up to kAllPairsLimit boxes, in cells cut on every axis (the cuts aim at about 24 boxes a
+//   cell, about 46 registered in 3D): every pair is tested, in the order the boxes were
+//   registered. No keys, no sort, and loops whose lengths do not depend on the boxes' sizes,
+//   which a sweep's scan does, at one mispredicted exit per box.
+// - Beyond, and in every column (the default cells: x left uncut, level_regrouping.hpp): the
+//   boxes get local numbers (the global-local map of the paper), are sorted on x (a counting
+//   pass into buckets of x, then DIS with one increment), and are swept on x with direct tests on
+//   the other axes. A long column swept on x tests about as many candidates per box as boxes
+//   reach it along x, where a cube of the same population tests every box of the cube.
+// Either way the hits of float boxes are written down without a branch (a compress through a
+// permutation table) and reported after the rows.
 //
 // A pair shared by several cells is reported only by the cell that holds the lower corner of the
 // two boxes' intersection, p[k] = max(a.min[k], b.min[k]). This replaces the paper's mask array:
@@ -24,6 +26,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
@@ -92,20 +95,35 @@ public:
                                std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report,
                                std::vector<std::uint32_t>& home) {
         const std::size_t m = entries.size();
-        order_.resize(m);
+        const std::size_t moves = sort_on_x(entries, boxes);
         std::uint64_t* order = order_.data();
-        for (std::size_t i = 0; i < m; ++i)
-            order[i] = (std::uint64_t{monotone_key(boxes[entries[i]].min[0])} << 32) | i;
-        const std::size_t moves = insertion_sort(order, m);
         order_equal_keys(order, m, entries, boxes, ids);
         lay_out_sorted(order, m, entries, boxes, floor);
+        if constexpr (kExactLanes) {
+            if (m <= kMostPaired) {
+                rows_.swept_rows(m, kSweptHitRoom, [&](const std::uint32_t* hits, std::size_t count) {
+                    report_hits(hits, count, boxes, report);
+                });
+                append_home(m, home);
+                return moves;
+            }
+        }
         rows_.sweep(m, boxes, report);
         append_home(m, home);
         return moves;
     }
 
+    /// After check_by_sweep(): the positions of the cell in x order (by min x), and a bound
+    /// on the x extent of its boxes (at least every box's max x - min x); valid until the next
+    /// check.
+    [[nodiscard]] std::span<const std::uint32_t> swept_positions() const noexcept {
+        return {rows_.columns.position, order_.size()};
+    }
+    [[nodiscard]] Real widest_x() const noexcept { return widest_x_; }
+
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return order_.capacity() * sizeof(std::uint64_t) + scratch_.bytes_held() +
+        return (order_.capacity() + spread_.capacity()) * sizeof(std::uint64_t) + xs_.capacity() * sizeof(float) +
+               (bucket_.capacity() + bucket_count_.capacity()) * sizeof(std::uint32_t) + scratch_.bytes_held() +
                own_home_.capacity() * sizeof(std::uint32_t);
     }
 
@@ -120,10 +138,13 @@ private:
     static constexpr bool kExactLanes = std::is_same_v<Real, float>;
     using Mask = typename CellScratch<Dim>::Mask;
 
+    /// The hits a sweep writes down before it hands them on (CellRows::swept_rows()).
+    static constexpr std::size_t kSweptHitRoom = 2048;
+
     void lay_out_sorted(const std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
                         std::span<const Box<Real, Dim>> boxes, const CellFloor<Real, Dim>& floor) {
         lay_out_columns(
-            m, 0, [&](std::size_t r) { return entries[order[r] & 0xFFFFFFFFU]; },
+            m, kSweptHitRoom, [&](std::size_t r) { return entries[order[r] & 0xFFFFFFFFU]; },
             [&](std::size_t r) { return static_cast<std::uint32_t>(order[r] >> 32); }, boxes, floor);
     }
 
@@ -177,9 +198,15 @@ private:
     void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
                         std::vector<std::uint32_t>& home) {
         SMB_ASSERT(m <= kMostPaired, "a cell tested pair by pair packs two local numbers in 31 bits");
-        const std::size_t count = rows_.pair_rows(m);
+        report_hits(rows_.columns.hits, rows_.pair_rows(m), boxes, report);
+        append_home(m, home);
+    }
+
+    // Reports the pairs of a hit list (i << 16 | j, local numbers of the layout).
+    template <class Report>
+    void report_hits(const std::uint32_t* hits, std::size_t count, std::span<const Box<Real, Dim>> boxes,
+                     Report& report) const {
         const std::uint32_t* position = rows_.columns.position;
-        const std::uint32_t* hits = rows_.columns.hits;
         for (std::size_t t = 0; t < count; ++t) {
             const std::uint32_t i = hits[t] >> 16;
             const std::uint32_t j = hits[t] & 0xFFFFU;
@@ -190,7 +217,6 @@ private:
                 report(position[i], position[j]);
             }
         }
-        append_home(m, home);
     }
 
     /// Whether the margin can settle anything: exact input has an infinite one.
@@ -244,10 +270,66 @@ private:
         }
     }
 
-    // DIS with the single increment 1: the cell's list follows last step's order, so only the
-    // boxes that moved past a neighbour, and those registered here from a neighbouring cell,
-    // are out of place. The keys carry the local numbers, so a move shifts 8 bytes, not a box.
-    static std::size_t insertion_sort(std::uint64_t* keys, std::size_t m) {
+    // Writes to order_ the cell's keys (x key << 32 | local number) in increasing order and
+    // returns the insertion-sort moves. The list is not one sorted run: it follows last step's
+    // order, cell by cell, so a cell's boxes come as a few runs in x order, one from each cell
+    // they were at home in (a column takes boxes from its neighbours on every axis it is cut
+    // on), each run sorted, the runs interleaved in x. So the keys are first spread over about
+    // m buckets of equal width in x by a counting pass, which leaves each box among the few of
+    // its bucket, and DIS with the single increment 1 then sorts those. A cell whose keys
+    // crowd into a few buckets (equal or clustered coordinates) stops the insertions once they
+    // pass a bound and is sorted outright: the result is the same sorted list either way.
+    std::size_t sort_on_x(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes) {
+        const std::size_t m = entries.size();
+        order_.resize(m);
+        if (m == 0) return 0;
+        spread_.resize(m);
+        bucket_.resize(m);
+        xs_.resize(m);
+        std::uint64_t* keyed = spread_.data();
+        float* xs = xs_.data();
+        float lo = std::numeric_limits<float>::infinity();
+        float hi = -std::numeric_limits<float>::infinity();
+        Real widest = 0;
+        for (std::size_t i = 0; i < m; ++i) {
+            const Box<Real, Dim>& box = boxes[entries[i]];
+            const Real x = box.min[0];
+            const float rounded = to_float(x);
+            xs[i] = rounded;
+            lo = std::min(lo, rounded);
+            hi = std::max(hi, rounded);
+            widest = std::max(widest, box.max[0] - x);
+            keyed[i] = (std::uint64_t{monotone_key(x)} << 32) | i;
+        }
+        // Rounded up: no box's exact extent exceeds it.
+        widest_x_ = std::nextafter(widest, std::numeric_limits<Real>::infinity());
+        // Buckets by the rounded value, which never reverses an order: keys in increasing order
+        // fall in buckets that never decrease, so each bucket is one stretch of the sorted list.
+        const std::size_t buckets = m;
+        // Rounded float arithmetic is monotone too. A width beyond the float range puts every
+        // box in one bucket (the bound then sorts them outright).
+        const float width = hi - lo;
+        const float scale = width > 0 && width < std::numeric_limits<float>::infinity()
+                                ? static_cast<float>(static_cast<double>(buckets) / static_cast<double>(width))
+                                : 0.0F;
+        const auto last_bucket = static_cast<float>(buckets - 1);
+        bucket_count_.assign(buckets + 1, 0U);
+        std::uint32_t* bucket = bucket_.data();
+        std::uint32_t* count = bucket_count_.data();
+        for (std::size_t i = 0; i < m; ++i) {
+            bucket[i] = static_cast<std::uint32_t>(std::min((xs[i] - lo) * scale, last_bucket));
+            ++count[bucket[i] + 1];
+        }
+        for (std::size_t b = 0; b < buckets; ++b) count[b + 1] += count[b];
+        std::uint64_t* order = order_.data();
+        for (std::size_t i = 0; i < m; ++i) order[count[bucket[i]]++] = keyed[i];
+        return insertion_sort(order, m, 8 * m + 64);
+    }
+
+    // DIS with the single increment 1 on a list whose boxes lie close to their places. Past
+    // `bound` moves the rest is sorted outright. The keys carry the local numbers, so a move
+    // shifts 8 bytes, not a box.
+    static std::size_t insertion_sort(std::uint64_t* keys, std::size_t m, std::size_t bound) {
         std::size_t moves = 0;
         for (std::size_t i = 1; i < m; ++i) {
             const std::uint64_t moving = keys[i];
@@ -258,11 +340,20 @@ private:
             }
             keys[j] = moving;
             moves += i - j;
+            if (moves > bound) {
+                std::sort(keys, keys + m);
+                break;
+            }
         }
         return moves;
     }
 
     std::vector<std::uint64_t> order_;
+    Real widest_x_ = 0;                        // see widest_x()
+    std::vector<std::uint64_t> spread_;        // the keys in the order of the entries
+    std::vector<std::uint32_t> bucket_;        // the bucket of each entry
+    std::vector<float> xs_;                    // the min x of each entry, rounded to float
+    std::vector<std::uint32_t> bucket_count_;  // the counting pass's offsets
     CellScratch<Dim> scratch_;
     CellRows<Dim> rows_;  // the columns laid out in scratch_, and the row tests that read them
     float sure_margin_ = std::numeric_limits<float>::infinity();

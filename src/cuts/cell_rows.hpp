@@ -52,6 +52,22 @@ struct CellRows {
         sweep_in_lanes<4>(m, boxes, report);
     }
 
+    /// The sweep of sweep() for float boxes, whose lanes' test is exact: the hits of each group
+    /// of lanes are written down without a branch (i << 16 | j, as pair_rows() writes them; the
+    /// cell holds at most 2^15 boxes), and flush(hits, count) takes them, in row order, whenever
+    /// fewer than `room` - Lanes places are left and at the end. A branch on each hit guessed
+    /// wrong for most rows.
+    template <class Flush>
+    void swept_rows(std::size_t m, std::size_t room, Flush&& flush) {
+#if SMB_LANES_AVX2
+        if (cpu_has_avx2()) {
+            swept_rows_avx2(m, room, flush);
+            return;
+        }
+#endif
+        swept_rows_in_lanes<4>(m, room, flush);
+    }
+
     /// Writes the hit list with every pair (i << 16 | j, i < j) that passes the lanes' test on
     /// every axis both ways; returns their number.
     std::size_t pair_rows(std::size_t m) {
@@ -145,7 +161,38 @@ private:
         return static_cast<std::size_t>(out - first);
     }
 
+    template <std::size_t Lanes, class Flush>
+    [[gnu::always_inline]] inline void swept_rows_in_lanes(std::size_t m, std::size_t room, Flush& flush) {
+        using MaskLanes = typename FloatLanes<Lanes>::Masks;
+        MaskLanes lane{};
+        for (std::size_t l = 0; l < Lanes; ++l) lane[l] = static_cast<Mask>(l);
+        const std::uint32_t* key = columns.key;
+        const Mask* inside = columns.inside;
+        std::uint32_t* const first = columns.hits;
+        std::uint32_t* const full = first + (room - Lanes);
+        std::uint32_t* out = first;
+        for (std::size_t i = 0; i < m; ++i) {
+            const std::uint32_t stop = monotone_key(columns.max[0][i]);
+            std::array<float, Dim> low{}, high{};  // low[0] unused, see sweep()
+            row_corners(i, low, high);
+            MaskLanes pair = lane + static_cast<Mask>((i << 16) | (i + 1));
+            for (std::size_t j = i + 1; key[j] <= stop; j += Lanes) {
+                if (out > full) {
+                    flush(static_cast<const std::uint32_t*>(first), static_cast<std::size_t>(out - first));
+                    out = first;
+                }
+                out = append_set_lanes<Lanes>(out, lanes_hit<Lanes, true>(j, inside[i], low, high), pair);
+                pair += static_cast<Mask>(Lanes);
+            }
+        }
+        flush(static_cast<const std::uint32_t*>(first), static_cast<std::size_t>(out - first));
+    }
+
 #if SMB_LANES_AVX2
+    template <class Flush>
+    [[gnu::target("avx2,popcnt")]] void swept_rows_avx2(std::size_t m, std::size_t room, Flush& flush) {
+        swept_rows_in_lanes<8>(m, room, flush);
+    }
     template <class Real, class Report>
     [[gnu::target("avx2")]] void sweep_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes,
                                             Report& report) const {

@@ -6,9 +6,11 @@
 // left its skin this way, without a detection of its own.
 
 #include <algorithm>
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -20,12 +22,23 @@
 
 namespace smb::detail {
 
+/// Where the check of columns swept on x writes each cell's entries back in x order and the
+/// bound on their x extent (Cells::widest); empty where the cells are not columns.
+template <std::floating_point Real>
+struct SweptColumns {
+    std::span<Position> entries;
+    std::span<Real> widest;
+};
+
 /// A view of the cells: valid while the regrouping that built them and the cuts are unchanged.
 template <std::floating_point Real, int Dim>
 struct Cells {
     const CutTree<Real, Dim>* cuts = nullptr;
     std::span<const Position> entries;     // the positions registered in each cell, cell by cell
     std::span<const std::uint32_t> begin;  // cell c holds entries [begin[c], begin[c + 1])
+    /// Where the cells are columns swept on x: cell c's entries are in order of min x, and no
+    /// box of it reaches further than widest[c] along x. Empty where the cells are unsorted.
+    std::span<const Real> widest;
 
     static constexpr int axis_of_level(int level) noexcept { return CutTree<Real, Dim>::axis_of_level(level); }
 
@@ -74,8 +87,20 @@ struct Cells {
                                   const bool* give_up = nullptr) const {
         for_each_covering(query, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
             if (give_up != nullptr && *give_up) return;
-            for (std::uint32_t i = begin[cell]; i < begin[cell + 1]; ++i) {
+            std::uint32_t first = begin[cell];
+            const std::uint32_t last = begin[cell + 1];
+            if (!widest.empty()) {
+                // A box that reaches query.min x has min x >= query.min x - widest; rounded
+                // down, the bound skips no such box.
+                const Real from = std::nextafter(query.min[0] - widest[cell], -std::numeric_limits<Real>::infinity());
+                first = static_cast<std::uint32_t>(
+                    std::partition_point(entries.begin() + first, entries.begin() + last,
+                                         [&](Position position) { return boxes[position].min[0] < from; }) -
+                    entries.begin());
+            }
+            for (std::uint32_t i = first; i < last; ++i) {
                 const Box<Real, Dim>& box = boxes[entries[i]];
+                if (!widest.empty() && box.min[0] > query.max[0]) break;  // and every later one
                 if (!overlaps(query, box)) continue;
                 bool owned = true;
                 for (int axis = 0; axis < Dim; ++axis)

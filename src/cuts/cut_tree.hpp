@@ -228,6 +228,14 @@ public:
         limit_[level][group] = static_cast<std::uint32_t>(std::min(band, 4.0e9));
     }
 
+    /// Leaves group `group` of `level` whole: every plane +inf, so that its first segment holds
+    /// every box and the others stay empty, and the group is never cut again.
+    void leave_whole(int level, std::size_t group) {
+        Real* out = cuts_[level].data() + group * (k_ + 1);
+        if (k_ > 1) std::fill(out, out + (k_ - 1), std::numeric_limits<Real>::infinity());
+        limit_[level][group] = std::numeric_limits<std::uint32_t>::max();
+    }
+
     /// Lower plane of segment `segment` of group `group` (-inf for the first).
     [[nodiscard]] Real lower(int level, std::size_t group, std::uint32_t segment) const noexcept {
         return segment == 0 ? -std::numeric_limits<Real>::infinity() : cuts_[level][group * (k_ + 1) + segment - 1];

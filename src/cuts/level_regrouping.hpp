@@ -53,6 +53,12 @@ public:
         for (int level = 1; level < Dim; ++level) {
             const int source = (level - 1) % 2;
             const int target = level % 2;
+            if (columns_ && level == Dim - 1) {
+                keep_columns_whole(cuts, lists_[source], begin_[source], lists_[target], begin_[target]);
+                cells_list_ = target;
+                stats.level_seconds[static_cast<std::size_t>(level)] = phase.lap();
+                continue;
+            }
             cutting +=
                 regroup_level(level, cuts, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
             locator_.judge_hints(level, cuts.segments(), workers_);
@@ -67,12 +73,26 @@ public:
         return cutting;
     }
 
+    /// Whether the deepest level (x) is left uncut, so that each cell is a whole column of the
+    /// level above, checked by a sweep on x (cell_pairs.hpp); else x is cut like every axis.
+    void set_columns(bool columns) noexcept { columns_ = columns; }
+    [[nodiscard]] bool columns() const noexcept { return columns_; }
+
     /// Every level locates without the hint (a cold order), or every level tries it again.
     void set_without_hint(bool without) noexcept { locator_.set_without_hint(without); }
 
     /// The cells the last run() built, bounded by `cuts`.
     [[nodiscard]] Cells<Real, Dim> cells(const CutTree<Real, Dim>& cuts) const noexcept {
-        return Cells<Real, Dim>{&cuts, lists_[cells_list_], begin_[cells_list_]};
+        return Cells<Real, Dim>{&cuts, lists_[cells_list_], begin_[cells_list_],
+                                columns_ ? std::span<const Real>(widest_) : std::span<const Real>()};
+    }
+
+    /// Columns only: where the check of the cells writes each cell's entries back in x order,
+    /// and its bound on their x extent (Cells::widest). Empty where x is cut.
+    [[nodiscard]] SweptColumns<Real> swept_columns() noexcept {
+        if (!columns_) return {};
+        widest_.resize(begin_[cells_list_].size() - 1);
+        return {lists_[cells_list_], widest_};
     }
 
     /// The oversized boxes of the last run(), in x order (ties by id); they are in no cell.
@@ -86,7 +106,7 @@ public:
         for (const auto& begin : begin_) bytes += begin.capacity() * sizeof(std::uint32_t);
         bytes += ranges_.capacity() * sizeof(std::uint32_t);
         bytes += oversized_.capacity() + oversized_list_.capacity() * sizeof(Position);
-        bytes += counts_.capacity() * sizeof(std::uint32_t);
+        bytes += counts_.capacity() * sizeof(std::uint32_t) + widest_.capacity() * sizeof(Real);
         return bytes + workers_.bytes_held([](const Worker& worker) { return worker.bytes_held(); });
     }
 
@@ -100,6 +120,9 @@ private:
                          std::span<const std::uint32_t> in_begin, std::span<const Box<Real, Dim>> boxes,
                          std::vector<Position>& out, std::vector<std::uint32_t>& out_begin);
     void publish_marks();
+    void keep_columns_whole(CutTree<Real, Dim>& cuts, std::vector<Position>& in,
+                            std::span<const std::uint32_t> in_begin, std::vector<Position>& out,
+                            std::vector<std::uint32_t>& out_begin);
 
     std::array<std::vector<Position>, 2> lists_;       // entries of a level, grouped by segment
     std::array<std::vector<std::uint32_t>, 2> begin_;  // group offsets into lists_
@@ -111,7 +134,30 @@ private:
     GroupLocator<Real, Dim> locator_;
     PerThread<Worker> workers_;
     int threads_ = 1;
+    bool columns_ = false;
+    std::vector<Real> widest_;  // columns: per cell, Cells::widest
 };
+
+/// The deepest level of columns: every group whole, its entries all in its first segment. No box
+/// is located: the entries of the level above are the cells' entries as they are (moved, not
+/// copied), each group's first segment holding them and its other segments empty.
+template <std::floating_point Real, int Dim>
+void LevelRegrouping<Real, Dim>::keep_columns_whole(CutTree<Real, Dim>& cuts, std::vector<Position>& in,
+                                                    std::span<const std::uint32_t> in_begin, std::vector<Position>& out,
+                                                    std::vector<std::uint32_t>& out_begin) {
+    const std::size_t groups = cuts.groups(Dim - 1);
+    const std::uint32_t k = cuts.segments();
+    SMB_ASSERT(in_begin.size() == groups + 1, "one offset per group");
+    out_begin.resize(groups * k + 1);
+    for (std::size_t g = 0; g < groups; ++g) {
+        cuts.leave_whole(Dim - 1, g);
+        out_begin[g * k] = in_begin[g];
+        std::fill(out_begin.begin() + static_cast<std::ptrdiff_t>(g * k + 1),
+                  out_begin.begin() + static_cast<std::ptrdiff_t>((g + 1) * k), in_begin[g + 1]);
+    }
+    out_begin[groups * k] = in_begin[groups];
+    out.swap(in);
+}
 
 /// Makes the threads' marks visible as oversized boxes, each once.
 template <std::floating_point Real, int Dim>

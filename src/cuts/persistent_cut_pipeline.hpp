@@ -11,8 +11,12 @@
 //      (level_regrouping.hpp). A group whose fullest segment left its band is cut again first
 //      (the axial cut, cut_tree.hpp). A box that spans more than two segments is oversized: it
 //      leaves the levels and is checked apart.
-//   3. Each cell of the deepest level is checked by cell_pairs.hpp (every pair, or a sweep for
-//      a crowded cell), which also writes the next order (cell_checks.hpp).
+//      By default the deepest level (x) is left uncut: each cell is a whole column of the level
+//      above, registered as it came, with no pass of its own.
+//   3. Each cell of the deepest level is checked by cell_pairs.hpp (a sort and a sweep on x for
+//      a column or a crowded cell, else every pair), which also writes the next order
+//      (cell_checks.hpp). A column is left in x order, so that a query box reads only the part
+//      of it the query reaches along x (cells.hpp).
 //   4. Oversized boxes are tested against the cells they cover and against one another.
 // docs/algorithm.md gives the proof that each overlapping pair is reported exactly once.
 
@@ -44,9 +48,18 @@
 
 namespace smb::detail {
 
+/// The shape of the cells: whole columns of the levels above x, swept on x (the default: the
+/// fewest registrations and candidates per box), or cut on every axis into cells of about the
+/// target population, which answer a query box by the few small cells it covers.
+enum class CellShape { columns, cut_on_every_axis };
+
 template <std::floating_point Real, int Dim, std::floating_point Input = Real>
 class PersistentCutPipeline {
 public:
+    explicit PersistentCutPipeline(CellShape shape = CellShape::columns) {
+        regrouping_.set_columns(shape == CellShape::columns);
+    }
+
     /// Drops removed slots from the order and renumbers the others (BoxStore::compact(), which
     /// leaves the listed boxes in the first slots).
     void fold_removals(const SlotRenumbering& renumbering) { cell_order_.fold_removals(renumbering); }
@@ -170,9 +183,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     plan_segments(n, settings);
     threads_ = thread_count(settings);
     // A cold order (first detection, new cut counts) scatters each cell's boxes over the
-    // ordered array. The check then reads them out of order, prefetched: renumbering them in
-    // cell order first (a second copy of every box) costs more than it saves, since cells are
-    // checked by testing every pair.
+    // ordered array. The check then reads them out of order: renumbering them in cell order
+    // first (a second copy of every box) costs more than it saves, since a cell copies its
+    // boxes out into arrays of its own before it tests them.
     const bool cold = order_state_ == OrderState::fresh || cuts_.segments() != segments_before;
     // In a cold order the previous entry says nothing of the next one's segment. Boxes that
     // jumped far since the last step are left to the hint's judgement, which counts the misses.
@@ -194,8 +207,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
 
     const Stopwatch check_watch;
     auto confirm = [this](Position a, Position b, bool sure) { return confirmed(a, b, sure); };
+    const SweptColumns<Real> columns = regrouping_.swept_columns();
     const CheckedCells<Real, Dim, CellOrder<Real, Dim, Input>, decltype(confirm)> checked{
-        regrouping_.cells(cuts_), regrouping_.oversized(), boxes, cell_order_, confirm};
+        regrouping_.cells(cuts_), columns, regrouping_.oversized(), boxes, cell_order_, confirm};
     stats.sort_moves = checks_.check(checked, sure_margin_, threads_, report, cell_order_.next());
     stats.oversized_boxes = regrouping_.oversized().size();
     stats.check_seconds = check_watch.seconds();

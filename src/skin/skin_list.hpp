@@ -410,8 +410,10 @@ private:
     CandidateLives lives_;
     bool exhausted_ = false;  // step aside at the next detect()
 
-    PersistentCutPipeline<float, Dim, float> cells_;  // over the fat boxes of the last rebuild
-    std::vector<Held> fat_;                           // per position
+    // Over the fat boxes of the last rebuild, in small cells: a box that left its skin asks
+    // them for its neighbours.
+    PersistentCutPipeline<float, Dim, float> cells_{CellShape::cut_on_every_axis};
+    std::vector<Held> fat_;              // per position
     std::vector<Held> held_;             // per position: this detection's boxes, held as floats; one more of padding
     std::vector<Slot> slot_of_;          // per position: the caller's index
     std::vector<Position> position_of_;  // per slot ever seen since the rebuild
