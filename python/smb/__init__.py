@@ -185,18 +185,18 @@ class World(_Readouts):
     overlapping pair of ids (a, b), a < b. The world keeps its axial cuts from one detection to
     the next, so a detection after small motions costs linear time.
 
-    dim, dtype, threads, events: as Detector. pipeline: 'persistent_cuts' (the default) or
-    'paper_lists' (the paper's sorted lists; slower, kept to reproduce the paper).
+    dim, dtype, skin, threads, events: as Detector. pipeline: 'persistent_cuts' (the default)
+    or 'paper_lists' (the paper's sorted lists; slower, kept to reproduce the paper; no skin).
     """
 
-    def __init__(self, dim=3, dtype=_np.float64, *, threads=1, events=False,
+    def __init__(self, dim=3, dtype=_np.float64, *, skin=0.0, threads=1, events=False,
                  pipeline="persistent_cuts",
                  target_cell_population=_DEFAULT_TARGET_CELL_POPULATION,
                  max_pairs_held=_DEFAULT_MAX_PAIRS_HELD):
         implementation, self.dtype = _implementation("World", dim, dtype)
         self.dim = dim
         self._impl = implementation(threads, target_cell_population, max_pairs_held, pipeline,
-                                    bool(events))
+                                    bool(events), float(skin))
 
     def insert(self, ids, boxes):
         """Adds boxes[i] under ids[i]. DuplicateIdError for an id present or named twice."""
