@@ -75,9 +75,7 @@ public:
 
     [[nodiscard]] HeldPrecision precision() const noexcept { return cuts_.precision(); }
     /// Pairs the held floats could not settle, tested again on the input, in the last detection.
-    [[nodiscard]] std::size_t retested() const noexcept {
-        return skin_detected_ ? skin_.retested() : cuts_.retested();
-    }
+    [[nodiscard]] std::size_t retested() const noexcept { return skin_detected_ ? skin_.retested() : cuts_.retested(); }
     /// Whether the skin list detected last; its candidates (skin_list()) are then current.
     [[nodiscard]] bool skin_detected() const noexcept { return skin_detected_; }
     [[nodiscard]] const SkinList<Real, Dim>& skin_list() const noexcept { return skin_; }

@@ -24,6 +24,7 @@
 #include "paper/cell_check.hpp"
 #include "paper/cell_lists.hpp"
 #include "paper/global_local_map.hpp"
+#include "paper/list_growth.hpp"
 #include "paper/mask_array.hpp"
 #include "paper/oversized_sweep.hpp"
 #include "paper/paper_level.hpp"
@@ -34,37 +35,6 @@
 #include "smb/stats.hpp"
 
 namespace smb::detail {
-
-/// Grows `list` to hold `length` items with a sixteenth to spare, and gives back what is more
-/// than a quarter above it: vectors that double would hold up to twice the lists' bytes, and
-/// more after N has shrunk.
-template <class Vector>
-void fit_capacity(Vector& list, std::size_t length) {
-    if (length > list.capacity()) {
-        list.reserve(length + length / 16);
-    } else if (list.capacity() > length + length / 4 && list.capacity() > 4096) {
-        Vector smaller;
-        smaller.reserve(std::max(length, list.size()) + length / 16);
-        smaller.assign(list.begin(), list.end());
-        list.swap(smaller);
-    }
-}
-
-/// Merges the sorted `arrivals` into the sorted `list` in place, from the back.
-template <class Entry>
-void merge_from_back(std::vector<Entry>& list, const std::vector<Entry>& arrivals) {
-    std::size_t kept = list.size();
-    std::size_t arrived = arrivals.size();
-    list.resize(kept + arrived);
-    std::size_t out = list.size();
-    while (arrived > 0) {
-        if (kept > 0 && entry_less(arrivals[arrived - 1], list[kept - 1])) {
-            list[--out] = list[--kept];
-        } else {
-            list[--out] = arrivals[--arrived];
-        }
-    }
-}
 
 template <std::floating_point Real, int Dim>
 class PaperPipeline {

@@ -42,6 +42,7 @@
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "skin/candidate_list.hpp"
 #include "skin/candidate_lives.hpp"
+#include "skin/fat_boxes.hpp"
 #include "skin/held_overlap.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
@@ -124,26 +125,9 @@ public:
     }
 
     /// The least distance from a box of the last detection to a face of its fat box, on the
-    /// caller's coordinates. Measured on the held floats, then lowered by their rounding: a
-    /// held coordinate is within half a float step of the shifted input (held_box.hpp), at most
-    /// 2^-24 of the largest held magnitude, so 2^-22 of it covers both boxes' sides.
+    /// caller's coordinates (fat_boxes.hpp).
     [[nodiscard]] double candidate_margin() const noexcept {
-        const std::size_t n = input_.size();
-        double least = skin_;
-        double largest = 0;
-        for (std::size_t p = 0; p < slot_of_.size(); ++p) {
-            if (slot_of_[p] >= n) continue;
-            const Held& box = held_[p];
-            const Held& fat = fat_[p];
-            for (int k = 0; k < Dim; ++k) {
-                least = std::min(least, static_cast<double>(box.min[k]) - static_cast<double>(fat.min[k]));
-                least = std::min(least, static_cast<double>(fat.max[k]) - static_cast<double>(box.max[k]));
-                largest = std::max(
-                    {largest, std::abs(static_cast<double>(fat.min[k])), std::abs(static_cast<double>(fat.max[k]))});
-            }
-        }
-        if (!kExact) least -= std::ldexp(largest, -22) + std::ldexp(1.0, -140);
-        return std::max(least, 0.0);
+        return least_skin_left<kExact, Dim>(held_, fat_, slot_of_, input_.size(), skin_);
     }
 
     void clear() { *this = SkinList(); }
@@ -177,21 +161,6 @@ private:
     /// The moved list is tested against every fresh box: past this length a rebuild is cheaper.
     [[nodiscard]] static std::size_t moved_limit(std::size_t n) noexcept { return std::max<std::size_t>(64, n / 64); }
 
-    [[nodiscard]] Held fattened(const Held& held) const noexcept {
-        Held fat;
-        for (int k = 0; k < Dim; ++k) {
-            fat.min[k] = float_below(static_cast<double>(held.min[k]) - skin_);
-            fat.max[k] = float_above(static_cast<double>(held.max[k]) + skin_);
-        }
-        return fat;
-    }
-
-    [[nodiscard]] static bool inside(const Held& box, const Held& fat) noexcept {
-        bool in = true;
-        for (int k = 0; k < Dim; ++k) in &= fat.min[k] <= box.min[k] && box.max[k] <= fat.max[k];
-        return in;
-    }
-
     /// The pipeline's pairs of fat boxes become the candidates; positions follow its new order.
     bool rebuild(const DetectionSettings& settings, DetectStats& stats) {
         rebuilt_ = true;
@@ -199,7 +168,7 @@ private:
         // held_ serves as the fat boxes by slot until the positions are known.
         resize_with_slack(held_, n + 1);  // and one box of padding for overlap_bit()
         for (std::size_t slot = 0; slot < n; ++slot)
-            held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_));
+            held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_), skin_);
         cells_.forget_slots_from(n);
         typename Candidates::Collector collect = candidates_.rebuild(candidate_cap(n));
         try {
@@ -293,7 +262,7 @@ private:
             fresh_.push_back(p);
         }
         for (const Position p : fresh_) {
-            fat_[p] = fattened(held_[p]);
+            fat_[p] = fattened(held_[p], skin_);
             std::uint8_t& state = state_[p];
             state &= static_cast<std::uint8_t>(~kGone);
             if ((state & kMoved) == 0) moved_.push_back(p);
