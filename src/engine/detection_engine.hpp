@@ -103,18 +103,6 @@ private:
     /// Detections the cuts make before the skin list is tried again, after it stepped aside.
     static constexpr std::size_t kSkinPause = 64;
 
-    /// The skin list's pairs are of indices into the array: keyed input reports keys.
-    template <class Report>
-    struct KeyedReport {
-        Report& report;
-        std::span<const BoxId> keys;
-
-        void operator()(BoxId a, BoxId b) { report(keys[a], keys[b]); }
-        void append(std::span<const Pair> pairs) {
-            for (const Pair& p : pairs) report(keys[p.a], keys[p.b]);
-        }
-    };
-
     /// With a skin, on floats (the input's own, or double input that floats resolve): the skin
     /// list detects, and the cuts give their memory back when it (re)builds. When it steps
     /// aside (SkinList::detect()), the cuts detect for kSkinPause detections.
@@ -129,13 +117,8 @@ private:
             --skin_pause_;
             return false;
         }
-        bool detected = false;
-        if (input.keys.empty()) {
-            detected = skin_.detect(input.boxes, cuts_.origin(), bounds.lo, bounds.hi, skin, settings, report, stats);
-        } else {
-            KeyedReport<Report> keyed{report, input.keys};
-            detected = skin_.detect(input.boxes, cuts_.origin(), bounds.lo, bounds.hi, skin, settings, keyed, stats);
-        }
+        const bool detected =
+            skin_.detect(input.boxes, input.keys, cuts_.origin(), bounds.lo, bounds.hi, skin, settings, report, stats);
         if (!detected) {
             skin_pause_ = kSkinPause;
             return false;

@@ -48,8 +48,8 @@ template <bool exact, int Dim>
         for (int k = 0; k < Dim; ++k) {
             const double fat_min = fat[p].min[k];
             const double fat_max = fat[p].max[k];
-            least = std::min({least, static_cast<double>(held[p].min[k]) - fat_min,
-                              fat_max - static_cast<double>(held[p].max[k])});
+            least = std::min(
+                {least, static_cast<double>(held[p].min[k]) - fat_min, fat_max - static_cast<double>(held[p].max[k])});
             largest = std::max({largest, std::abs(fat_min), std::abs(fat_max)});
         }
     }

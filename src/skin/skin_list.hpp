@@ -56,17 +56,20 @@ class SkinList {
 public:
     using Held = Box<float, Dim>;
 
-    /// Reports every overlapping pair of `input` (box i under id i) to report(i, j). `origin`:
+    /// Reports every overlapping pair of `input` (box i under keys[i], or under i where `keys` is
+    /// empty) to report(key_i, key_j), or in runs to report.append(). `origin`:
     /// where held coordinates start (held_box.hpp; zero for float input). Returns false, having
     /// reported nothing and released its memory, when the fat boxes make more candidates than
     /// it will hold (about 32 per box), when a quarter of the boxes left their fat boxes since
     /// the last detection (a skin far too thin for the motion), or after two short lives of the
     /// candidates running (candidate_lives.hpp): the caller then detects without a skin.
     template <class Report>
-    bool detect(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
-                const std::array<Input, Dim>& scene_lo, const std::array<Input, Dim>& scene_hi, double skin,
-                const DetectionSettings& settings, Report& report, DetectStats& stats) {
+    bool detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> keys,
+                const std::array<Input, Dim>& origin, const std::array<Input, Dim>& scene_lo,
+                const std::array<Input, Dim>& scene_hi, double skin, const DetectionSettings& settings, Report& report,
+                DetectStats& stats) {
         input_ = input;
+        keys_ = keys;
         threads_ = thread_count(settings);
         sure_margin_ = kExact ? 0.0F : held_sure_margin<Input, Dim>(origin, scene_lo, scene_hi);
         retested_ = 0;
@@ -137,7 +140,8 @@ public:
                             (slot_of_.capacity() + position_of_.capacity() + moved_.capacity() + fresh_.capacity()) *
                                 sizeof(std::uint32_t) +
                             state_.capacity() + gone_.capacity() * sizeof(Position) +
-                            dirty_.capacity() * sizeof(std::uint64_t) + candidates_.bytes_held();
+                            dirty_.capacity() * sizeof(std::uint64_t) + key_of_.capacity() * sizeof(BoxId) +
+                            candidates_.bytes_held();
         return bytes + scans_.bytes_held([](const Scan& scan) {
             return (scan.fresh.capacity() + scan.gone.capacity()) * sizeof(Position);
         });
@@ -205,6 +209,10 @@ private:
             if (p + ahead < count) prefetch_whole(&input_[slot_of_[p + ahead]]);
             held_[p] = held_box<Input, Dim>(input_[slot_of_[p]], origin_);
         }
+        if (!keys_.empty()) {
+            key_of_.resize(count);
+            for (std::size_t p = 0; p < count; ++p) key_of_[p] = keys_[slot_of_[p]];
+        }
     }
 
     enum class Outcome { kept, rebuild, hopeless };
@@ -254,6 +262,7 @@ private:
         for (std::size_t slot = known; slot < n; ++slot) {
             const auto p = static_cast<Position>(slot_of_.size());
             slot_of_.push_back(static_cast<Slot>(slot));
+            if (!keys_.empty()) key_of_.push_back(keys_[slot]);
             position_of_.push_back(p);
             held_.back() = held_box<Input, Dim>(input_[slot], origin_);
             held_.push_back(Held{});  // the padding
@@ -306,8 +315,12 @@ private:
                 }
                 continue;
             }
-            if (p + ahead < last && slot_of_[p + ahead] < n) prefetch_whole(&input_[slot_of_[p + ahead]]);
+            if (p + ahead < last && slot_of_[p + ahead] < n) {
+                prefetch_whole(&input_[slot_of_[p + ahead]]);
+                if (!keys_.empty()) prefetch_whole(&keys_[slot_of_[p + ahead]]);
+            }
             const Held held = held_box<Input, Dim>(input_[slot], origin_);
+            if (!keys_.empty()) key_of_[p] = keys_[slot];  // a World's slot may hold another id now
             // Read before held_[p] is written: the two arrays start alike modulo 4 KiB (each its
             // own mapping), so the load after the store would wait on it (4K aliasing).
             const Held fat = fat_[p];
@@ -330,7 +343,7 @@ private:
     void test(Position a, Position b, Report& report) {
         const std::uint32_t bits = overlap_bits<Dim>(&held_[a], &held_[b], sure_margin_);
         if ((bits & 1U) != 0 && confirmed(a, b, (bits & 2U) != 0, retested_))
-            report(BoxId{slot_of_[a]}, BoxId{slot_of_[b]});
+            report(keys_.empty() ? BoxId{slot_of_[a]} : key_of_[a], keys_.empty() ? BoxId{slot_of_[b]} : key_of_[b]);
     }
 
     /// Tests every candidate (candidate_list.hpp), after dropping those of boxes marked in dirty_
@@ -340,9 +353,15 @@ private:
         auto confirm = [this](Position a, Position b, bool sure, std::size_t& retested) {
             return confirmed(a, b, sure, retested);
         };
-        const typename Candidates::template Pass<decltype(confirm)> pass{held_.data(), dirty_.data(), sure_margin_,
-                                                                         slot_of_, confirm};
-        retested_ += candidates_.test(pass, dropping, threads_, report);
+        if (keys_.empty()) {
+            const typename Candidates::template Pass<decltype(confirm), Slot> pass{held_.data(), dirty_.data(),
+                                                                                   sure_margin_, slot_of_, confirm};
+            retested_ += candidates_.test(pass, dropping, threads_, report);
+        } else {
+            const typename Candidates::template Pass<decltype(confirm), BoxId> pass{held_.data(), dirty_.data(),
+                                                                                    sure_margin_, key_of_, confirm};
+            retested_ += candidates_.test(pass, dropping, threads_, report);
+        }
     }
 
     /// The new candidates of fresh box `p`: the boxes that kept their fat box since the rebuild,
@@ -383,6 +402,8 @@ private:
     std::vector<Held> fat_;                           // per position
     std::vector<Held> held_;             // per position: this detection's boxes, held as floats; one more of padding
     std::vector<Slot> slot_of_;          // per position: the caller's index
+    std::span<const BoxId> keys_;        // per slot: the name it is reported under (empty: the slot)
+    std::vector<BoxId> key_of_;          // per position, with keys: keys_[slot_of_[p]]
     std::vector<Position> position_of_;  // per slot ever seen since the rebuild
     std::vector<std::uint8_t> state_;    // per position: kMoved, kFresh, kGone, kDone
     std::vector<Position> moved_;        // positions with kMoved, each once
