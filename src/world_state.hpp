@@ -13,7 +13,6 @@
 
 #include <cstddef>
 #include <span>
-#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -34,8 +33,15 @@
 
 namespace smb::detail {
 
-/// The filtered detection is live; its state is the World's filters'.
-struct FilteredPath {};
+/// The filtered detection is live; its state is the World's filters' (counted with them).
+template <std::floating_point Real, int Dim>
+struct FilteredPath {
+    const WorldFilters<Real, Dim>* filters;
+
+    [[nodiscard]] HeldPrecision precision() const noexcept { return filters->precision(); }
+    [[nodiscard]] std::size_t retested() const noexcept { return filters->retested(); }
+    [[nodiscard]] static std::size_t bytes_held() noexcept { return 0; }
+};
 
 template <std::floating_point Real, int Dim>
 class WorldState {
@@ -53,10 +59,10 @@ public:
     const WorldFilters<Real, Dim>& filters() const noexcept { return filters_; }
 
     HeldPrecision last_precision() const noexcept {
-        return std::visit([&](const auto& path) { return precision_of(path); }, path_);
+        return std::visit([](const auto& path) { return path.precision(); }, path_);
     }
     std::size_t last_retested_pairs() const noexcept {
-        return std::visit([&](const auto& path) { return retested_of(path); }, path_);
+        return std::visit([](const auto& path) { return path.retested(); }, path_);
     }
 
     /// Forgets every box and gives back every array, as a new world would have them.
@@ -75,7 +81,7 @@ public:
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
         if (filters_.wanted()) [[unlikely]] {
             // The filters compact the store on their own: the other paths' lists are forgotten.
-            enter<FilteredPath>();
+            enter<Filtered>(&filters_);
             filters_.detect(store_, settings_, settings_.skin, output, stats);
         } else if (settings_.pipeline == Pipeline::paper_lists) {
             Paper& paper = enter<Paper>(settings_);
@@ -148,14 +154,7 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         // World allocates this state itself, so its own size counts too.
-        const std::size_t path = std::visit(
-            [](const auto& live) -> std::size_t {
-                if constexpr (std::is_same_v<std::decay_t<decltype(live)>, FilteredPath>)
-                    return 0;
-                else
-                    return live.bytes_held();
-            },
-            path_);
+        const std::size_t path = std::visit([](const auto& live) { return live.bytes_held(); }, path_);
         return sizeof(*this) + store_.bytes_held() + path + filters_.bytes_held() + chunk_.capacity() * sizeof(Pair) +
                removed_before_detect_.capacity() * sizeof(BoxId);
     }
@@ -164,32 +163,16 @@ private:
     using Engine = DetectionEngine<Real, Dim>;
     using Paper = PaperPipeline<Real, Dim>;
     using Periodic = PeriodicPath<Real, Dim>;
-    using Path = std::variant<Engine, Paper, FilteredPath, Periodic>;
+    using Filtered = FilteredPath<Real, Dim>;
+    using Path = std::variant<Engine, Paper, Filtered, Periodic>;
 
     /// The path `P`, made live (from `args`) unless it is already; the filters give back what
     /// their detection held when another path takes over.
     template <class P, class... Args>
     P& enter(Args&&... args) {
         if (P* live = std::get_if<P>(&path_)) return *live;
-        if (std::holds_alternative<FilteredPath>(path_)) filters_.disengage();
+        if (std::holds_alternative<Filtered>(path_)) filters_.disengage();
         return path_.template emplace<P>(std::forward<Args>(args)...);
-    }
-
-    /// The paper's lists hold the boxes as they are.
-    [[nodiscard]] HeldPrecision precision_of(const Paper&) const noexcept {
-        if (stats_.boxes == 0) return HeldPrecision::none;
-        return std::is_same_v<Real, float> ? HeldPrecision::floats : HeldPrecision::doubles;
-    }
-    [[nodiscard]] HeldPrecision precision_of(const FilteredPath&) const noexcept { return filters_.precision(); }
-    template <class P>
-    [[nodiscard]] static HeldPrecision precision_of(const P& path) noexcept {
-        return path.precision();
-    }
-    [[nodiscard]] static std::size_t retested_of(const Paper&) noexcept { return 0; }
-    [[nodiscard]] std::size_t retested_of(const FilteredPath&) const noexcept { return filters_.retested(); }
-    template <class P>
-    [[nodiscard]] static std::size_t retested_of(const P& path) noexcept {
-        return path.retested();
     }
 
     /// What every detection closes with, whichever path it took.

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/box_store.hpp"
 #include "paper/cell_check.hpp"
 #include "paper/paper_pipeline.hpp"
 #include "paper_example_lists.hpp"

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "core/assert.hpp"
@@ -31,6 +32,7 @@
 #include "paper/segment_rule.hpp"
 #include "paper/shell_sort.hpp"
 #include "paper/singular_regroup.hpp"
+#include "smb/held_precision.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -48,6 +50,12 @@ public:
 
     /// Slots [0, listed()) are in the lists; later ones arrived since the last detection.
     [[nodiscard]] std::size_t listed() const noexcept { return listed_; }
+    /// The lists hold the boxes as they are; none before a detection of some boxes.
+    [[nodiscard]] HeldPrecision precision() const noexcept {
+        if (listed_ == 0) return HeldPrecision::none;
+        return std::is_same_v<Real, float> ? HeldPrecision::floats : HeldPrecision::doubles;
+    }
+    [[nodiscard]] static std::size_t retested() noexcept { return 0; }
 
     /// Reports every overlapping pair of `boxes` (valid; slot s of a BoxStore at index s) as
     /// report(slot_a, slot_b).

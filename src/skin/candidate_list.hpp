@@ -78,10 +78,19 @@ public:
 
     /// Candidates and tombstones.
     [[nodiscard]] std::size_t size() const noexcept { return candidates_.size(); }
-    /// The list as it stands: candidates, and tombstones (a == b) to skip.
-    [[nodiscard]] std::span<const Candidate> entries() const noexcept { return candidates_; }
     /// Candidates without the tombstones.
     [[nodiscard]] std::size_t live() const noexcept { return candidates_.size() - tombstones_; }
+    /// The live candidates as pairs of names (name_of[position]), a < b, in the order of the list.
+    void pairs_named(std::span<const Slot> name_of, std::vector<Pair>& out) const {
+        out.clear();
+        out.reserve(live());
+        for (const Candidate& candidate : candidates_) {
+            if (candidate.a == candidate.b) continue;  // a tombstone
+            const BoxId a = name_of[candidate.a];
+            const BoxId b = name_of[candidate.b];
+            out.push_back(a < b ? Pair{a, b} : Pair{b, a});
+        }
+    }
 
     /// What a pass reads: the held boxes by position (one more of padding, for overlap_bits()),
     /// the positions dropped in this detection (a bit each), the sure margin, the caller's index

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 
 #include "core/held_box.hpp"
@@ -13,6 +14,17 @@
 #include "smb/box.hpp"
 
 namespace smb::detail {
+
+// What the skin list knows of each position of its boxes.
+inline constexpr std::uint8_t kMoved = 1;  // fat box changed since the rebuild (or new): not in the cells
+inline constexpr std::uint8_t kFresh = 2;  // fat box changed in this detection
+inline constexpr std::uint8_t kGone = 4;   // its slot is past the caller's array
+inline constexpr std::uint8_t kDone = 8;   // fresh, and its new candidates are found already
+
+/// The most candidates the skin list holds for `n` boxes before it steps aside.
+[[nodiscard]] inline std::size_t candidate_cap(std::size_t n) noexcept { return 32 * n + (std::size_t{1} << 20); }
+/// The moved list is tested against every fresh box: past this length a rebuild is cheaper.
+[[nodiscard]] inline std::size_t moved_limit(std::size_t n) noexcept { return std::max<std::size_t>(64, n / 64); }
 
 /// `held` grown by `skin` on every side, rounded outward to floats.
 template <int Dim>

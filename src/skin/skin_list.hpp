@@ -116,16 +116,7 @@ public:
 
     /// The live candidates of the last detection as pairs of the caller's indices, a < b, in
     /// the order of the list (smb/candidate_pairs.hpp).
-    void candidate_pairs(std::vector<Pair>& out) const {
-        out.clear();
-        out.reserve(candidates_.live());
-        for (const auto& candidate : candidates_.entries()) {
-            if (candidate.a == candidate.b) continue;  // a tombstone
-            const BoxId a = slot_of_[candidate.a];
-            const BoxId b = slot_of_[candidate.b];
-            out.push_back(a < b ? Pair{a, b} : Pair{b, a});
-        }
-    }
+    void candidate_pairs(std::vector<Pair>& out) const { candidates_.pairs_named(slot_of_, out); }
 
     /// The least distance from a box of the last detection to a face of its fat box, on the
     /// caller's coordinates (fat_boxes.hpp).
@@ -153,17 +144,7 @@ private:
     /// Below this many positions one thread does the scan alone.
     static constexpr std::size_t kParallelFrom = std::size_t{1} << 15;
 
-    // Per position.
-    static constexpr std::uint8_t kMoved = 1;  // fat box changed since the rebuild (or new): not in the cells
-    static constexpr std::uint8_t kFresh = 2;  // fat box changed in this detection
-    static constexpr std::uint8_t kGone = 4;   // its slot is past the caller's array
-    static constexpr std::uint8_t kDone = 8;   // fresh, and its new candidates are found already
-
     static constexpr bool kExact = std::same_as<Input, float>;  // held boxes are the input's own
-
-    [[nodiscard]] static std::size_t candidate_cap(std::size_t n) noexcept { return 32 * n + (std::size_t{1} << 20); }
-    /// The moved list is tested against every fresh box: past this length a rebuild is cheaper.
-    [[nodiscard]] static std::size_t moved_limit(std::size_t n) noexcept { return std::max<std::size_t>(64, n / 64); }
 
     /// The pipeline's pairs of fat boxes become the candidates; positions follow its new order.
     bool rebuild(const DetectionSettings& settings, DetectStats& stats) {
@@ -353,15 +334,15 @@ private:
         auto confirm = [this](Position a, Position b, bool sure, std::size_t& retested) {
             return confirmed(a, b, sure, retested);
         };
-        if (keys_.empty()) {
-            const typename Candidates::template Pass<decltype(confirm), Slot> pass{held_.data(), dirty_.data(),
-                                                                                   sure_margin_, slot_of_, confirm};
+        auto test_named = [&]<class Name>(std::span<const Name> names) {
+            const typename Candidates::template Pass<decltype(confirm), Name> pass{held_.data(), dirty_.data(),
+                                                                                   sure_margin_, names, confirm};
             retested_ += candidates_.test(pass, dropping, threads_, report);
-        } else {
-            const typename Candidates::template Pass<decltype(confirm), BoxId> pass{held_.data(), dirty_.data(),
-                                                                                    sure_margin_, key_of_, confirm};
-            retested_ += candidates_.test(pass, dropping, threads_, report);
-        }
+        };
+        if (keys_.empty())
+            test_named(std::span<const Slot>(slot_of_));
+        else
+            test_named(std::span<const BoxId>(key_of_));
     }
 
     /// The new candidates of fresh box `p`: the boxes that kept their fat box since the rebuild,
