@@ -7,6 +7,7 @@
 
 #include "core/invalid_box.hpp"
 #include "core/shortest_number.hpp"
+#include "instantiations.hpp"
 #include "query/grid_index.hpp"
 #include "query/grid_ray.hpp"
 
@@ -152,9 +153,8 @@ std::size_t BoxIndex<Real, Dim>::bytes_held() const noexcept {
     return grid_ ? sizeof(*grid_) + grid_->bytes_held() : 0;
 }
 
-template class BoxIndex<float, 2>;
-template class BoxIndex<double, 2>;
-template class BoxIndex<float, 3>;
-template class BoxIndex<double, 3>;
+#define SMB_INSTANTIATE(Real, Dim) template class BoxIndex<Real, Dim>;
+SMB_FOR_EACH_BOX_TYPE(SMB_INSTANTIATE)
+#undef SMB_INSTANTIATE
 
 }  // namespace smb

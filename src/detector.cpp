@@ -2,10 +2,14 @@
 #include "smb/detector.hpp"
 
 #include <functional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "core/collected_pairs.hpp"
 #include "detector_state.hpp"
+#include "filters/filtered_sink.hpp"
+#include "instantiations.hpp"
 
 namespace smb {
 
@@ -65,6 +69,36 @@ DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, std::ve
 }
 
 template <std::floating_point Real, int Dim>
+DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const DetectFilters& filters,
+                                        std::vector<Pair>& pairs) {
+    detail::check_filter_lengths(filters, boxes.size());
+    auto& state = this->state();
+    return detail::collect_pairs(pairs, state.settings().max_pairs_held, "DetectorSettings::max_pairs_held",
+                                 "detect(boxes, filters, sink)",
+                                 [&](const PairSink& sink) { return state.detect_filtered(boxes, filters, sink); });
+}
+
+template <std::floating_point Real, int Dim>
+DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const DetectFilters& filters,
+                                        const PairSink& sink) {
+    if (!sink) throw ArgumentError("detect: the pair sink is empty");
+    detail::check_filter_lengths(filters, boxes.size());
+    return state().detect_filtered(boxes, filters, sink);
+}
+
+template <std::floating_point Real, int Dim>
+DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const PeriodicDomain<Real, Dim>& domain,
+                                        std::vector<PeriodicPair>& pairs) {
+    return state().detect_periodic(boxes, domain, pairs);
+}
+
+template <std::floating_point Real, int Dim>
+DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const PeriodicDomain<Real, Dim>& domain,
+                                        std::vector<PeriodicPair>& pairs, PairEvents& events) {
+    return state().detect_periodic(boxes, domain, pairs, [&](std::span<const Pair> plain) { events.update(plain); });
+}
+
+template <std::floating_point Real, int Dim>
 void Detector<Real, Dim>::clear() {
     if (state_) state_->clear();
 }
@@ -99,9 +133,8 @@ CandidatePairs Detector<Real, Dim>::candidates() {
     return state_ ? state_->candidates() : CandidatePairs{};
 }
 
-template class Detector<float, 2>;
-template class Detector<double, 2>;
-template class Detector<float, 3>;
-template class Detector<double, 3>;
+#define SMB_INSTANTIATE(Real, Dim) template class Detector<Real, Dim>;
+SMB_FOR_EACH_BOX_TYPE(SMB_INSTANTIATE)
+#undef SMB_INSTANTIATE
 
 }  // namespace smb

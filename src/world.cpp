@@ -3,11 +3,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <unordered_set>
 #include <utility>
+#include <vector>
 
 #include "core/collected_pairs.hpp"
+#include "instantiations.hpp"
 #include "query/world_query_index.hpp"
 #include "world_state.hpp"
 
@@ -194,6 +197,75 @@ DetectStats World<Real, Dim>::detect(std::vector<Pair>& pairs, PairEvents& event
 }
 
 template <std::floating_point Real, int Dim>
+DetectStats World<Real, Dim>::detect(const PeriodicDomain<Real, Dim>& domain, std::vector<PeriodicPair>& pairs) {
+    return state().detect_periodic(domain, pairs, nullptr);
+}
+
+template <std::floating_point Real, int Dim>
+DetectStats World<Real, Dim>::detect(const PeriodicDomain<Real, Dim>& domain, std::vector<PeriodicPair>& pairs,
+                                     PairEvents& events) {
+    return state().detect_periodic(domain, pairs, &events);
+}
+
+// The filters (smb/filter.hpp, docs/filters.md).
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_filter(BoxId id, const Filter& filter) {
+    auto& state = this->state();
+    state.filters().set_filter(state.store().slot_of(id), filter, state.store().slot_count());
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_filter(std::span<const BoxId> ids, std::span<const Filter> filters) {
+    if (ids.size() != filters.size())
+        throw ArgumentError("set_filter: " + std::to_string(ids.size()) + " ids but " + std::to_string(filters.size()) +
+                            " filters");
+    auto& state = this->state();
+    const auto& store = state.store();
+    for (const BoxId id : ids) (void)store.slot_of(id);  // throws before any change
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        state.filters().set_filter(store.slot_of(ids[i]), filters[i], store.slot_count());
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_filter(std::span<const BoxId> ids, const Filter& filter) {
+    auto& state = this->state();
+    const auto& store = state.store();
+    for (const BoxId id : ids) (void)store.slot_of(id);  // throws before any change
+    for (const BoxId id : ids) state.filters().set_filter(store.slot_of(id), filter, store.slot_count());
+}
+
+template <std::floating_point Real, int Dim>
+Filter World<Real, Dim>::filter(BoxId id) const {
+    if (!state_) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
+    return state_->filters().filter_at(state_->store().slot_of(id));
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_static(BoxId id, bool is_static) {
+    set_static(std::span(&id, 1), is_static);
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_static(std::span<const BoxId> ids, bool is_static) {
+    auto& state = this->state();
+    const auto& store = state.store();
+    for (const BoxId id : ids) (void)store.slot_of(id);  // throws before any change
+    for (const BoxId id : ids) state.filters().set_static(store.slot_of(id), is_static, store.slot_count());
+}
+
+template <std::floating_point Real, int Dim>
+bool World<Real, Dim>::is_static(BoxId id) const {
+    if (!state_) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
+    return state_->filters().static_at(state_->store().slot_of(id));
+}
+
+template <std::floating_point Real, int Dim>
+void World<Real, Dim>::set_pair_predicate(PairPredicate predicate) {
+    state().filters().set_predicate(std::move(predicate));
+}
+
+template <std::floating_point Real, int Dim>
 const DetectStats& World<Real, Dim>::last_stats() const noexcept {
     return state_ ? state_->last_stats() : kNoStats;
 }
@@ -225,12 +297,7 @@ std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> boxes, 
 #define SMB_INSTANTIATE(Real, Dim)   \
     template class World<Real, Dim>; \
     template std::vector<Pair> find_overlapping_pairs<Real, Dim>(std::span<const Box<Real, Dim>>, const WorldSettings&);
-
-SMB_INSTANTIATE(float, 2)
-SMB_INSTANTIATE(double, 2)
-SMB_INSTANTIATE(float, 3)
-SMB_INSTANTIATE(double, 3)
-
+SMB_FOR_EACH_BOX_TYPE(SMB_INSTANTIATE)
 #undef SMB_INSTANTIATE
 
 }  // namespace smb

@@ -1,26 +1,27 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// What a World holds: its boxes (box_store.hpp), its settings, and the pipeline that finds the
-// overlapping pairs, chosen by WorldSettings::pipeline: the persistent cuts, holding floats of
-// double boxes where floats resolve the scene (held_cut_pipeline.hpp), or the paper's lists.
-// The pairs are handed to the caller's sink in chunks from here, whichever pipeline found them.
-// Filters and static boxes (filters/world_filters.hpp) take their own path, chosen by one branch
-// per detection, so that a world without them runs the default detection as it is.
+// What a World holds: its boxes (box_store.hpp), its settings, its filters and static boxes
+// (filters/world_filters.hpp), and the path its last detection took, one of:
+// - the detection engine over the store (engine/detection_engine.hpp), the default: the
+//   persistent cuts, or the skin list with WorldSettings::skin;
+// - the paper's lists (paper/paper_pipeline.hpp), with WorldSettings::pipeline = paper_lists;
+// - the filtered detection, once a filter, a static box or a predicate is in use (its state is
+//   the filters' own);
+// - the periodic detection (periodic/periodic_path.hpp), for detect(domain, ...).
+// A detection that takes another path than the last one starts that path afresh, and the path
+// left behind gives its memory back.
 
-#include <algorithm>
 #include <cstddef>
 #include <span>
-#include <string>
-#include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "core/box_store.hpp"
 #include "core/pair_output.hpp"
-#include "core/scene_bounds.hpp"
 #include "core/settings_check.hpp"
 #include "core/stopwatch.hpp"
-#include "cuts/held_cut_pipeline.hpp"
+#include "engine/detection_engine.hpp"
 #include "filters/world_filters.hpp"
 #include "paper/paper_pipeline.hpp"
 #include "periodic/periodic_path.hpp"
@@ -29,14 +30,24 @@
 #include "smb/pair_events.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
-#include "smb/world.hpp"
 
 namespace smb::detail {
+
+/// The filtered detection is live; its state is the World's filters' (counted with them).
+template <std::floating_point Real, int Dim>
+struct FilteredPath {
+    const WorldFilters<Real, Dim>* filters;
+
+    [[nodiscard]] HeldPrecision precision() const noexcept { return filters->precision(); }
+    [[nodiscard]] std::size_t retested() const noexcept { return filters->retested(); }
+    [[nodiscard]] static std::size_t bytes_held() noexcept { return 0; }
+};
 
 template <std::floating_point Real, int Dim>
 class WorldState {
 public:
-    explicit WorldState(const WorldSettings& settings) : settings_(validated_settings(settings)) {}
+    explicit WorldState(const WorldSettings& settings)
+        : settings_(validated_settings(settings)), path_(std::in_place_type<DetectionEngine<Real, Dim>>) {}
     WorldState(const WorldState&) = delete;
     WorldState& operator=(const WorldState&) = delete;
 
@@ -46,78 +57,57 @@ public:
     const DetectStats& last_stats() const noexcept { return stats_; }
     WorldFilters<Real, Dim>& filters() noexcept { return filters_; }
     const WorldFilters<Real, Dim>& filters() const noexcept { return filters_; }
+
     HeldPrecision last_precision() const noexcept {
-        if (periodic_engaged_) return periodic_.precision();
-        if (filters_.engaged()) return filters_.precision();
-        if (settings_.pipeline == Pipeline::persistent_cuts) return persistent_.precision();
-        if (stats_.boxes == 0) return HeldPrecision::none;
-        return std::is_same_v<Real, float> ? HeldPrecision::floats : HeldPrecision::doubles;
+        return std::visit([](const auto& path) { return path.precision(); }, path_);
     }
     std::size_t last_retested_pairs() const noexcept {
-        if (periodic_engaged_) return periodic_.retested();
-        if (filters_.engaged()) return filters_.retested();
-        return settings_.pipeline == Pipeline::persistent_cuts ? persistent_.retested() : 0;
+        return std::visit([](const auto& path) { return path.retested(); }, path_);
     }
 
     /// Forgets every box and gives back every array, as a new world would have them.
     void clear() {
         store_ = BoxStore<Real, Dim>();
-        persistent_.clear();
-        paper_ = PaperPipeline<Real, Dim>(&store_, &settings_);
         filters_.clear();
-        periodic_.clear();
-        periodic_engaged_ = false;
+        path_.template emplace<DetectionEngine<Real, Dim>>();
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
         cleared_ = true;
     }
 
     DetectStats detect(const PairSink& sink) {
-        leave_periodic();
-        if (filters_.wanted() || filters_.engaged()) [[unlikely]] {
-            if (filters_.wanted()) return detect_filtered(sink);
-            filters_.disengage();  // the default pipelines were reset when it engaged
-        }
         const Stopwatch whole;
         DetectStats stats;
-        if (store_.has_removals()) {
-            const bool paper = settings_.pipeline == Pipeline::paper_lists;
-            const SlotRenumbering renumbering = store_.compact(paper ? paper_.listed() : persistent_.listed());
-            if (paper)
-                paper_.fold_removals(renumbering);
-            else
-                persistent_.fold_removals(renumbering);
-            stats.update_seconds = whole.seconds();
+        PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
+        if (filters_.wanted()) [[unlikely]] {
+            // The filters compact the store on their own: the other paths' lists are forgotten.
+            enter<Filtered>(&filters_);
+            filters_.detect(store_, settings_, settings_.skin, output, stats);
+        } else if (settings_.pipeline == Pipeline::paper_lists) {
+            Paper& paper = enter<Paper>(settings_);
+            if (store_.has_removals()) {
+                paper.fold_removals(store_.compact(paper.listed()));
+                stats.update_seconds = whole.seconds();
+            }
+            auto report_slots = [&](Slot a, Slot b) { output(store_.id_at(a), store_.id_at(b)); };
+            paper.detect(store_.boxes(), report_slots, stats);
+        } else {
+            Engine& engine = enter<Engine>();
+            if (store_.has_removals()) {
+                engine.fold_removals(store_.compact(engine.listed(store_.slot_count())));
+                stats.update_seconds = whole.seconds();
+            }
+            engine.detect({store_.boxes(), store_.ids(), nullptr, true}, settings_, settings_.skin, output, stats);
         }
         stats.boxes = store_.slot_count();
-
-        PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
-        if (settings_.pipeline == Pipeline::paper_lists) {
-            auto report_slots = [&](Slot a, Slot b) { output(store_.id_at(a), store_.id_at(b)); };
-            paper_.detect(report_slots, stats);
-        } else if (store_.slot_count() == 0) {
-            persistent_.detect_nothing(settings_, output, stats);
-        } else {
-            // The store holds valid boxes only: this pass finds the bounds and throws nothing.
-            // Float boxes are held as they are, and need no bounds.
-            const Stopwatch scan;
-            SceneBounds<Real, Dim> bounds;
-            if constexpr (HeldCutPipeline<Real, Dim>::kMayRound) bounds = checked_bounds(store_.boxes());
-            persistent_.judge(store_.boxes(), bounds);
-            stats.scan_seconds = scan.seconds();
-            persistent_.detect(store_.boxes(), store_.ids(), bounds, settings_, output, stats);
-        }
         output.flush();
-        stats.bytes_held = bytes_held();
-        stats.total_seconds = whole.seconds();
-        stats_ = stats;
+        finish(stats, whole);
         finish_for_events();
         return stats;
     }
 
     /// The periodic detection (periodic/periodic_path.hpp) into `pairs`, and `events` (if not
     /// null) updated with the (a, b) of the pairs before they replace the contents of `pairs`.
-    /// The default pipelines forget their lists when it takes over, as for the filtered path.
     DetectStats detect_periodic(const PeriodicDomain<Real, Dim>& domain, std::vector<PeriodicPair>& pairs,
                                 PairEvents* events) {
         check_domain(domain);
@@ -126,32 +116,27 @@ public:
                 "detect(domain, pairs): a periodic detection does not apply filters, static boxes or a predicate, "
                 "and some are in use");
         const Stopwatch whole;
-        if (filters_.engaged()) filters_.disengage();
-        if (!periodic_engaged_) {
-            persistent_.clear();
-            paper_ = PaperPipeline<Real, Dim>(&store_, &settings_);
-            periodic_engaged_ = true;
-        }
-        // The periodic pipeline sees box i at index i: compacting moves the last boxes into the
+        Periodic& periodic = enter<Periodic>();
+        // The periodic path sees box i at index i: compacting moves the last boxes into the
         // holes, which costs them their place in its order, nothing more. The boxes are checked
         // as they are gathered: a box too large for the domain throws then, and what changed
-        // before (the compaction, the default pipelines forgotten) costs speed, not results.
+        // before (the compaction, the other paths forgotten) costs speed, not results.
         if (store_.has_removals()) store_.compact(store_.slot_count());
         DetectStats stats;
         if (events == nullptr) {
-            stats = periodic_.detect(store_.boxes(), store_.ids(), domain, settings_, pairs);
+            stats = periodic.detect(store_.boxes(), store_.ids(), domain, settings_, pairs, settings_.skin);
             finish_for_events();
         } else {
-            stats = periodic_.detect(store_.boxes(), store_.ids(), domain, settings_, pairs,
-                                     [&](std::span<const Pair> plain) {
-                                         finish_for_events();
-                                         if (cleared_before_detect_) events->replace_all();
-                                         events->update(plain, reinserted_before_detect());
-                                     });
+            stats = periodic.detect(
+                store_.boxes(), store_.ids(), domain, settings_, pairs,
+                [&](std::span<const Pair> plain) {
+                    finish_for_events();
+                    if (cleared_before_detect_) events->replace_all();
+                    events->update(plain, reinserted_before_detect());
+                },
+                settings_.skin);
         }
-        stats.bytes_held = bytes_held();
-        stats.total_seconds = whole.seconds();
-        stats_ = stats;
+        finish(stats, whole);
         return stats;
     }
 
@@ -169,38 +154,32 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         // World allocates this state itself, so its own size counts too.
-        return sizeof(*this) + store_.bytes_held() + persistent_.bytes_held() + paper_.bytes_held() +
-               filters_.bytes_held() + periodic_.bytes_held() + chunk_.capacity() * sizeof(Pair) +
+        const std::size_t path = std::visit([](const auto& live) { return live.bytes_held(); }, path_);
+        return sizeof(*this) + store_.bytes_held() + path + filters_.bytes_held() + chunk_.capacity() * sizeof(Pair) +
                removed_before_detect_.capacity() * sizeof(BoxId);
     }
 
 private:
-    /// The detection with filters or statics in use (world_filters.hpp). It compacts the store
-    /// on its own, so the default pipelines forget their lists when it takes over.
-    DetectStats detect_filtered(const PairSink& sink) {
-        leave_periodic();
-        const Stopwatch whole;
-        DetectStats stats;
-        if (!filters_.engaged()) {
-            persistent_.clear();
-            paper_ = PaperPipeline<Real, Dim>(&store_, &settings_);
-        }
-        PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
-        filters_.detect(store_, settings_, output, stats);
-        output.flush();
+    using Engine = DetectionEngine<Real, Dim>;
+    using Paper = PaperPipeline<Real, Dim>;
+    using Periodic = PeriodicPath<Real, Dim>;
+    using Filtered = FilteredPath<Real, Dim>;
+    using Path = std::variant<Engine, Paper, Filtered, Periodic>;
+
+    /// The path `P`, made live (from `args`) unless it is already; the filters give back what
+    /// their detection held when another path takes over.
+    template <class P, class... Args>
+    P& enter(Args&&... args) {
+        if (P* live = std::get_if<P>(&path_)) return *live;
+        if (std::holds_alternative<Filtered>(path_)) filters_.disengage();
+        return path_.template emplace<P>(std::forward<Args>(args)...);
+    }
+
+    /// What every detection closes with, whichever path it took.
+    void finish(DetectStats& stats, const Stopwatch& whole) {
         stats.bytes_held = bytes_held();
         stats.total_seconds = whole.seconds();
         stats_ = stats;
-        finish_for_events();
-        return stats;
-    }
-
-    /// After periodic detections, an ordinary one starts its pipelines afresh (they were
-    /// cleared when the periodic path took over) and the periodic path gives its memory back.
-    void leave_periodic() {
-        if (!periodic_engaged_) return;
-        periodic_.clear();
-        periodic_engaged_ = false;
     }
 
     /// For pair events, after a detection that completed: what was removed, or cleared, between
@@ -213,11 +192,8 @@ private:
     WorldSettings settings_;
     BoxStore<Real, Dim> store_;
     DetectStats stats_;
-    HeldCutPipeline<Real, Dim> persistent_;
-    PaperPipeline<Real, Dim> paper_{&store_, &settings_};
     WorldFilters<Real, Dim> filters_;
-    PeriodicPath<Real, Dim> periodic_;
-    bool periodic_engaged_ = false;
+    Path path_;
     std::vector<Pair> chunk_;
     std::vector<BoxId> removed_before_detect_;
     bool cleared_ = false;

@@ -85,20 +85,20 @@ TEST(CliArguments, EveryArgumentErrorGivesTheDocumentedStatus) {
     ASSERT_GT(usage, 2);
     TempFolder folder;
     const std::vector<std::vector<std::string>> bad_arguments{
-        {},                                                           // no command
-        {"--frobnicate"},                                             // unknown option before the command
-        {"pairs", "--frobnicate"},                                    // unknown option
-        {"pairs", "--pairs-in-memory", "1"},                          // out of range
-        {"pairs", "--input"},                                         // missing value
-        {"generate", "--side", "20", "-E", "0.3"},                    // options that exclude each other
-        {"generate", "-n", "many"},                                   // not a number
-        {"run", "--dim", "4"},                                        // not one of the choices
-        {"run", "-L", "1.5"},                                         // out of range
-        {"run", "-n", "-5"},                                          // negative count
-        {"run", "--threads", "2000"},                                 // beyond WorldSettings' 1024
-        {"run", "-n", "100", "-s", "2", "--skin", "0.1"},             // checked once parsed: needs a detector
-        {"run", "--pipeline", "paper", "--segment-rule", "largest"},  // not one of the choices
-        {"run", "-n", "100", "-s", "2", "--segment-rule", "paper"},   // needs the paper pipeline
+        {},                                                            // no command
+        {"--frobnicate"},                                              // unknown option before the command
+        {"pairs", "--frobnicate"},                                     // unknown option
+        {"pairs", "--pairs-in-memory", "1"},                           // out of range
+        {"pairs", "--input"},                                          // missing value
+        {"generate", "--side", "20", "-E", "0.3"},                     // options that exclude each other
+        {"generate", "-n", "many"},                                    // not a number
+        {"run", "--dim", "4"},                                         // not one of the choices
+        {"run", "-L", "1.5"},                                          // out of range
+        {"run", "-n", "-5"},                                           // negative count
+        {"run", "--threads", "2000"},                                  // beyond WorldSettings' 1024
+        {"run", "-n", "100", "--pipeline", "paper", "--skin", "0.1"},  // checked once parsed: no skin there
+        {"run", "--pipeline", "paper", "--segment-rule", "largest"},   // not one of the choices
+        {"run", "-n", "100", "-s", "2", "--segment-rule", "paper"},    // needs the paper pipeline
     };
     for (const auto& arguments : bad_arguments) {
         const auto result = run_smb(folder, arguments);

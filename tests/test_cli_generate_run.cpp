@@ -213,11 +213,26 @@ TEST(CliRun, DetectorWithASkinChecksEveryStepAndSaysHowItKeptItsCandidates) {
     const auto text = run_smb(folder, {"run", "-n", "1000", "-s", "4", "--pipeline", "detector", "--skin", "0.1"});
     ASSERT_EQ(text.status, 0) << text.err;
     EXPECT_NE(text.out.find("skin"), std::string::npos) << text.out;
-    // A skin is a Detector setting.
-    const auto refused = run_smb(folder, {"run", "-n", "100", "-s", "2", "--skin", "0.1"});
+    // The paper's lists keep no skin.
+    const auto refused = run_smb(folder, {"run", "-n", "100", "-s", "2", "--pipeline", "paper", "--skin", "0.1"});
     EXPECT_NE(refused.status, 0);
-    EXPECT_NE(refused.err.find("--pipeline detector"), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("--pipeline persistent or detector"), std::string::npos) << refused.err;
     EXPECT_NE(run_smb(folder, {"run", "--pipeline", "detector", "--skin", "-1"}).status, 0);
+}
+
+TEST(CliRun, WorldWithASkinChecksEveryStepAndSaysHowItKeptItsCandidates) {
+    TempFolder folder;
+    const auto result = run_smb(
+        folder, {"run", "-n", "3000", "-s", "12", "-L", "1e-4", "--skin", "0.1", "--check-every", "1", "--json"});
+    ASSERT_EQ(result.status, 0) << result.err;
+    const auto summary = nlohmann::json::parse(result.out);
+    EXPECT_EQ(summary["pipeline"], "persistent");
+    EXPECT_DOUBLE_EQ(summary["skin"].get<double>(), 0.1);
+    EXPECT_EQ(summary["check"]["steps_checked"], 12);
+    EXPECT_TRUE(summary["check"]["ok"].get<bool>());
+    EXPECT_LT(summary["skin_steps"]["rebuilt"].get<std::size_t>(), 11U);
+    EXPECT_GT(summary["skin_steps"]["candidates_median"].get<double>(), summary["pairs"]["median"].get<double>());
+    EXPECT_GT(summary["phase_seconds_median"]["containment"].get<double>(), 0);
 }
 
 TEST(CliRun, BadArgumentsAreRejected) {

@@ -74,12 +74,14 @@ TYPED_TEST_SUITE(WorldPairEventsTest, WorldTypes, WorldTypeNames);
 /// ten is static (the world then detects on its filtered path), and pairs of two statics are
 /// neither reported nor events.
 template <typename WorldType>
-void world_events_against_brute_force(bool statics) {
+void world_events_against_brute_force(bool statics, double skin = 0) {
     using Real = typename WorldType::real_type;
     constexpr int Dim = WorldType::dimension;
     using BoxT = Box<Real, Dim>;
     Random random(statics ? 7002 : 7001);
-    WorldType world(test_settings());
+    WorldSettings settings = test_settings();
+    settings.skin = skin;
+    WorldType world(settings);
     PairEvents events;
     std::map<BoxId, BoxT> boxes;
     std::map<BoxId, std::uint64_t> body_of;
@@ -154,6 +156,11 @@ void world_events_against_brute_force(bool statics) {
 TYPED_TEST(WorldPairEventsTest, ManyStepsAgainstBruteForce) { world_events_against_brute_force<TypeParam>(false); }
 
 TYPED_TEST(WorldPairEventsTest, ManyStepsWithStaticBoxes) { world_events_against_brute_force<TypeParam>(true); }
+
+TYPED_TEST(WorldPairEventsTest, ManyStepsWithASkin) {
+    world_events_against_brute_force<TypeParam>(false, 0.5);
+    world_events_against_brute_force<TypeParam>(true, 0.5);
+}
 
 TEST(WorldPairEvents, RemovedAndReinsertedInPlaceEndsAndBegins) {
     World2d world;

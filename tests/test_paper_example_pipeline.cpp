@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/box_store.hpp"
 #include "paper/cell_check.hpp"
 #include "paper/paper_pipeline.hpp"
 #include "paper_example_lists.hpp"
@@ -110,7 +111,6 @@ std::vector<Pair> sorted_pairs(std::vector<Pair> pairs) {
 class PaperExamplePipeline : public ::testing::Test {
 protected:
     PaperExamplePipeline() {
-        settings_.target_cell_population = 3;  // 12 boxes: two slabs, two sub-lists in each
         for (BoxId id = 0; id < 12; ++id) ids_.push_back(id);
     }
 
@@ -118,7 +118,7 @@ protected:
         std::vector<Pair> pairs;
         auto report = [&](Slot a, Slot b) { pairs.push_back({a, b}); };
         DetectStats stats;
-        pipeline_.detect(report, stats);
+        pipeline_.detect(store_.boxes(), report, stats);
         return sorted_pairs(pairs);
     }
 
@@ -129,9 +129,16 @@ protected:
         store_.update(ids_, kBoxes);
     }
 
-    WorldSettings settings_;
+    /// 12 boxes: two slabs, two sub-lists in each.
+    static WorldSettings example_settings() {
+        WorldSettings settings;
+        settings.target_cell_population = 3;
+        return settings;
+    }
+
+    WorldSettings settings_ = example_settings();
     BoxStore<double, 2> store_;
-    Pipeline2 pipeline_{&store_, &settings_};
+    Pipeline2 pipeline_{settings_};
     std::vector<BoxId> ids_;
 };
 

@@ -64,8 +64,11 @@ TYPED_TEST(PeriodicWorldTest, RandomScenesWithInsertionsRemovalsAndTeleports) {
         WorldSettings two;
         two.threads = 2;
         two.target_cell_population = 6;
+        WorldSettings skin;  // the skin list keeps the candidates of the boxes and their images
+        skin.skin = 0.4;
         World world;
         World threaded(two);
+        World skinned(skin);
         Scene<World> scene;
         BoxId next = 1;
         auto new_id = [&] {
@@ -78,16 +81,20 @@ TYPED_TEST(PeriodicWorldTest, RandomScenesWithInsertionsRemovalsAndTeleports) {
             const BoxId id = new_id();
             scene.insert(world, id, box);
             threaded.insert(id, box);
+            skinned.insert(id, box);
         }
         std::vector<PeriodicPair> pairs;
         std::vector<PeriodicPair> pairs_threaded;
+        std::vector<PeriodicPair> pairs_skinned;
         for (int step = 0; step < 14; ++step) {
             SCOPED_TRACE("axes " + std::to_string(axes) + ", step " + std::to_string(step));
             world.detect(domain, pairs);
             threaded.detect(domain, pairs_threaded);
+            skinned.detect(domain, pairs_skinned);
             const auto expected = scene.brute(domain);
             ASSERT_TRUE(same_periodic_pairs(pairs, expected));
             ASSERT_TRUE(same_periodic_pairs(pairs_threaded, expected));
+            ASSERT_TRUE(same_periodic_pairs(pairs_skinned, expected));
             for (std::size_t i = 0; i < scene.boxes.size(); ++i) {
                 scene.boxes[i] = moved(random, scene.boxes[i], domain, 0.3, chance(random, 0.03));
                 if (chance(random, 0.01))  // a teleport, maybe periods away
@@ -96,9 +103,11 @@ TYPED_TEST(PeriodicWorldTest, RandomScenesWithInsertionsRemovalsAndTeleports) {
             }
             world.update(scene.ids, scene.boxes);
             threaded.update(scene.ids, scene.boxes);
+            skinned.update(scene.ids, scene.boxes);
             for (int r = 0; r < 15 && !scene.ids.empty(); ++r) {
                 const std::size_t i = uniform_index(random, scene.ids.size());
                 threaded.remove(scene.ids[i]);
+                skinned.remove(scene.ids[i]);
                 scene.remove(world, i);
             }
             for (int n = 0; n < 15; ++n) {
@@ -106,6 +115,7 @@ TYPED_TEST(PeriodicWorldTest, RandomScenesWithInsertionsRemovalsAndTeleports) {
                 const BoxId id = new_id();
                 scene.insert(world, id, box);
                 threaded.insert(id, box);
+                skinned.insert(id, box);
             }
         }
     }

@@ -25,7 +25,7 @@ concept HasSkin = requires(Settings settings) {
 
 static_assert(std::is_base_of_v<DetectionSettings, WorldSettings>);
 static_assert(std::is_base_of_v<DetectionSettings, DetectorSettings>);
-static_assert(HasPipeline<WorldSettings> && !HasSkin<WorldSettings>, "a World has no skin");
+static_assert(HasPipeline<WorldSettings> && HasSkin<WorldSettings>, "a World has a pipeline and a skin");
 static_assert(HasSkin<DetectorSettings> && !HasPipeline<DetectorSettings>, "a Detector has one pipeline");
 static_assert(!std::is_constructible_v<World3d, DetectorSettings>);
 static_assert(!std::is_constructible_v<Detector3d, WorldSettings>);
@@ -95,6 +95,12 @@ TEST(Settings, ErrorsNameTheClassTheSettingCameIn) {
     detector = {};
     detector.skin = std::numeric_limits<double>::quiet_NaN();
     EXPECT_NE(refusal<Detector2d>(detector).find("DetectorSettings::skin"), std::string::npos);
+    world = {};
+    world.skin = -1;
+    EXPECT_NE(refusal<World3d>(world).find("WorldSettings::skin"), std::string::npos);
+    world.skin = 0.5;
+    world.pipeline = Pipeline::paper_lists;  // the paper's lists keep no skin
+    EXPECT_NE(refusal<World3d>(world).find("WorldSettings::skin needs Pipeline::persistent_cuts"), std::string::npos);
 }
 
 TEST(Settings, MessagesWriteNumbersAsTheCallerWouldWriteThem) {

@@ -86,6 +86,7 @@ struct Scenario {
     int steps = 25;
     std::size_t count = 400;
     BoxId first_id = 0;  // from 2^32 on, the pipeline's keys cannot hold the ids
+    double skin = 0;     // WorldSettings::skin
 };
 
 template <typename WorldType>
@@ -100,7 +101,9 @@ protected:
         Random random(seed);
         const std::size_t count = scaled(scenario.count);
         space_ = std::pow(static_cast<double>(count) * std::pow(1.5, Dim) / 0.35, 1.0 / Dim);
-        World<Real, Dim> world(test_settings());
+        WorldSettings settings = test_settings();
+        settings.skin = scenario.skin;
+        World<Real, Dim> world(settings);
         std::map<BoxId, Entry<Real, Dim>> entries;
         BoxId next = scenario.first_id;
         auto add = [&](BoxId id) {
@@ -247,6 +250,22 @@ TYPED_TEST(WorldFiltersTest, PredicateWithFiltersAndStaticsMatchesBruteForce) {
     scenario.static_share = 0.3;
     scenario.predicate = true;
     this->run(scenario, 31);
+}
+
+TYPED_TEST(WorldFiltersTest, WithASkinFiltersClassesStaticsAndPredicateMatchBruteForce) {
+    // A skin a few steps of motion wide, and one far thinner than a step (it steps aside).
+    for (const double skin : {0.1, 1e-4}) {
+        SCOPED_TRACE(::testing::Message() << "skin " << skin);
+        Scenario scenario;
+        scenario.skin = skin;
+        scenario.static_share = 0.2;
+        this->run(scenario, 61);
+        scenario.values = FilterValues::layered;
+        this->run(scenario, 62);
+        scenario.predicate = true;
+        scenario.first_id = BoxId{1} << 40;
+        this->run(scenario, 63);
+    }
 }
 
 /// The two-set (bipartite) recipe: set A in category 1 with mask 2, set B in category 2 with

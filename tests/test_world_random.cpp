@@ -306,6 +306,32 @@ TYPED_TEST(WorldRandomTest, SameCallsGiveSamePairsInSameOrder) {
     EXPECT_EQ(first, second);
 }
 
+TYPED_TEST(WorldRandomTest, SkinKeepsEveryRegimeExact) {
+    if (test_pipeline() == Pipeline::paper_lists) GTEST_SKIP() << "the paper's lists keep no skin";
+    // Moves, teleports, insertions, removals, reinsertions and assign() under a skin: one a
+    // few steps of motion wide, one far wider, one thinner than a step (it steps aside).
+    Regime sparse;
+    sparse.count = scaled(600);
+    sparse.density = 0.1;
+    Regime churn = sparse;
+    churn.churn = 0.25;
+    Regime fast = sparse;
+    fast.motion = 0.05;
+    fast.jump_chance = 0.05;
+    Regime tiny;
+    tiny.count = 4;
+    tiny.churn = 0.5;
+    tiny.steps = 60;
+    for (const double skin : {0.2, 2.0, 1e-4}) {
+        SCOPED_TRACE(::testing::Message() << "skin " << skin);
+        WorldSettings settings = test_settings();
+        settings.skin = skin;
+        for (const Regime& regime : {sparse, churn, fast, tiny}) this->run(regime, 121, settings);
+        settings.threads = 3;
+        this->run(sparse, 122, settings);
+    }
+}
+
 TYPED_TEST(WorldRandomTest, ThreadCountChangesNeitherPairsNorOrder) {
     // Every detection is checked against brute force inside run(); the fingerprints then show
     // that the order of the report does not depend on the number of threads either. Large

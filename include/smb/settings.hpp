@@ -66,6 +66,11 @@ struct WorldSettings : DetectionSettings {
     Pipeline pipeline = Pipeline::persistent_cuts;
     /// How Pipeline::paper_lists chooses its segments; the persistent cuts do not read it.
     SegmentRule segment_rule = SegmentRule::from_count;
+    /// The skin, as DetectorSettings::skin says: 0, the default, detects from scratch at every
+    /// call; a positive skin keeps the pairs of fat boxes as candidates from one detection to
+    /// the next, for the world's boxes, its filtered and its periodic detections alike. Needs
+    /// Pipeline::persistent_cuts. Must be finite and not negative.
+    double skin = 0;
 };
 
 /// Tuning of a Detector: the shared DetectionSettings and the skin. A Detector always detects

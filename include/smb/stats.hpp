@@ -38,10 +38,10 @@ struct DetectStats {
     /// Zero with the persistent cuts.
     std::size_t largest_cell_boxes = 0;
 
-    /// Detector with a skin (DetectorSettings::skin): candidate pairs kept after this
+    /// With a skin (DetectorSettings::skin, WorldSettings::skin): candidate pairs kept after this
     /// detection, boxes that left their fat box (or arrived) and found new candidates, and
     /// whether the candidates were rebuilt from scratch by the axial cuts. World with static
-    /// boxes (docs/filters.md): the static copies its moving boxes hold, the moving boxes that
+    /// boxes and no skin (docs/filters.md): the static copies its moving boxes hold, the moving boxes that
     /// left their fat box (or arrived) and asked the statics' grid again, and whether the
     /// statics were indexed again (they changed).
     std::size_t skin_candidates = 0;
@@ -57,7 +57,7 @@ struct DetectStats {
     /// the same pass (InvalidBoxError); a World checked its boxes when they were inserted or
     /// updated. Zero with Pipeline::paper_lists, which holds the boxes as they are.
     double scan_seconds = 0;
-    /// Detector with a skin: checking every box against its fat box, and making new fat boxes
+    /// With a skin: checking every box against its fat box, and making new fat boxes
     /// for the boxes that left theirs (or arrived). Zero otherwise.
     double containment_seconds = 0;
     /// Persistent cuts: selecting the quantiles (the cut positions) of the groups cut again in

@@ -228,11 +228,11 @@ class World(_Readouts):
     returns every overlapping pair of ids (a, b), a < b. The world keeps its axial cuts from one detection to
     the next, so a detection after small motions costs linear time.
 
-    dim, dtype, threads, events: as Detector. pipeline: 'persistent_cuts' (the default) or
-    'paper_lists' (the paper's sorted lists; slower, kept to reproduce the paper).
+    dim, dtype, skin, threads, events: as Detector. pipeline: 'persistent_cuts' (the default)
+    or 'paper_lists' (the paper's sorted lists; slower, kept to reproduce the paper; no skin).
     """
 
-    def __init__(self, dim=3, dtype=_np.float64, *, threads=1, events=False,
+    def __init__(self, dim=3, dtype=_np.float64, *, skin=0.0, threads=1, events=False,
                  pipeline="persistent_cuts",
                  target_cell_population=_DEFAULT_TARGET_CELL_POPULATION,
                  max_pairs_held=_DEFAULT_MAX_PAIRS_HELD):
@@ -240,7 +240,7 @@ class World(_Readouts):
         self._impl = implementation(_arguments.count("threads", threads),
                                     _arguments.count("target_cell_population", target_cell_population),
                                     _arguments.count("max_pairs_held", max_pairs_held),
-                                    _arguments.pipeline(pipeline), bool(events))
+                                    _arguments.pipeline(pipeline), bool(events), _arguments.real("skin", skin))
 
     def insert(self, ids, boxes):
         """Adds boxes[i] under ids[i]. DuplicateIdError for an id present or named twice."""

@@ -111,8 +111,9 @@ void bind_world(py::module_& module) {
     };
     py::class_<Handle>(module, world_class_name<Real, Dim>().c_str())
         .def(py::init([](std::size_t threads, std::size_t target_cell_population, std::size_t max_pairs_held,
-                         const std::string& pipeline, bool events) {
+                         const std::string& pipeline, bool events, double skin) {
                  WorldSettings settings;
+                 settings.skin = skin;
                  settings.threads = threads;
                  settings.target_cell_population = target_cell_population;
                  settings.max_pairs_held = max_pairs_held;
@@ -120,7 +121,7 @@ void bind_world(py::module_& module) {
                  return std::make_unique<Handle>(settings, events, static_cast<unsigned>(threads));
              }),
              py::arg("threads"), py::arg("target_cell_population"), py::arg("max_pairs_held"), py::arg("pipeline"),
-             py::arg("events"))
+             py::arg("events"), py::arg("skin") = 0.0)
         .def("insert", [](Handle& self, py::handle ids, py::handle boxes) { insert_or_update(self, ids, boxes, true); })
         .def("update",
              [](Handle& self, py::handle ids, py::handle boxes) { insert_or_update(self, ids, boxes, false); })

@@ -132,6 +132,36 @@ def test_filters_and_static_boxes(dim, dtype):
 
 @pytest.mark.parametrize("dim", DIMS)
 @pytest.mark.parametrize("dtype", DTYPES)
+def test_skin_over_many_steps_with_events_and_filters(dim, dtype):
+    rng = np.random.default_rng(91 + dim + (dtype == np.float32))
+    world = smb.World(dim, dtype, skin=1.5, events=True)
+    model = WorldModel(dim, dtype)
+    ids = rng.choice(1 << 40, size=200, replace=False).astype(np.int64)
+    boxes = random_boxes(rng, len(ids), dim, dtype)
+    world.insert(ids, boxes)
+    model.insert(ids, boxes)
+    for step in range(16):
+        if step == 8:  # the second half through the filters and the statics
+            chosen = np.array(sorted(model.boxes), dtype=np.int64)[::3]
+            world.set_filter(chosen, np.full(len(chosen), 2), np.full(len(chosen), 1))
+            world.set_static(chosen[:10], True)
+            for i in chosen.tolist():
+                model.categories[i], model.masks[i] = 2, 1
+            for i in chosen[:10].tolist():
+                model.static[i] = True
+        pairs = world.detect(sort=True)
+        expected = model.pairs()
+        np.testing.assert_array_equal(pairs, expected)
+        begun, ended = model.events(expected)
+        np.testing.assert_array_equal(world.begun, begun)
+        np.testing.assert_array_equal(world.ended, ended)
+        random_step(rng, world, model, dim, dtype)
+    with pytest.raises(smb.ArgumentError, match="skin"):
+        smb.World(dim, dtype, skin=-1.0)
+
+
+@pytest.mark.parametrize("dim", DIMS)
+@pytest.mark.parametrize("dtype", DTYPES)
 def test_queries_and_ray_casts(dim, dtype):
     rng = np.random.default_rng(71 + dim)
     world = smb.World(dim, dtype)

@@ -35,26 +35,33 @@ struct PairAppender {
     }
 };
 
+/// Runs `fill` (a callable that appends to `items` and returns a result), then leaves in
+/// `items` exactly what it appended. The old contents stay in front until it succeeded, so that
+/// a throw (an invalid box, the pair limit, an allocation) leaves them as they were; capacity
+/// the failed call added is given back, since past a pair limit it may be gigabytes. An empty
+/// vector costs nothing more than a plain collection.
+template <class Item, class Fill>
+auto replace_on_success(std::vector<Item>& items, Fill&& fill) {
+    const std::size_t kept = items.size();
+    const std::size_t capacity = items.capacity();
+    try {
+        auto result = fill();
+        items.erase(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(kept));
+        return result;
+    } catch (...) {
+        items.resize(kept);
+        if (items.capacity() > capacity) items.shrink_to_fit();
+        throw;
+    }
+}
+
 /// Runs `detect` (a callable taking a PairSink) and leaves in `pairs` exactly the pairs it
-/// reported. The pairs go after the old contents and are moved to the front once the detection
-/// succeeded, so that a throw (an invalid box, the pair limit, an allocation) leaves the old
-/// contents as they were; capacity the failed detection added is given back, since past the
-/// limit it may be gigabytes. An empty vector costs nothing more than a plain collection.
+/// reported, all or nothing (replace_on_success()).
 template <class Detect>
 DetectStats collect_pairs(std::vector<Pair>& pairs, std::size_t limit, const char* limit_name,
                           const char* streaming_call, Detect&& detect) {
-    const std::size_t kept = pairs.size();
-    const std::size_t capacity = pairs.capacity();
-    const PairAppender appender{pairs, kept, limit, limit_name, streaming_call};
-    try {
-        const DetectStats stats = detect(PairSink(std::cref(appender)));
-        pairs.erase(pairs.begin(), pairs.begin() + static_cast<std::ptrdiff_t>(kept));
-        return stats;
-    } catch (...) {
-        pairs.resize(kept);
-        if (pairs.capacity() > capacity) pairs.shrink_to_fit();
-        throw;
-    }
+    const PairAppender appender{pairs, pairs.size(), limit, limit_name, streaming_call};
+    return replace_on_success(pairs, [&] { return detect(PairSink(std::cref(appender))); });
 }
 
 }  // namespace smb::detail

@@ -25,22 +25,29 @@ inline void check_detection_settings(const DetectionSettings& settings, const st
                             " (0: as many as OpenMP offers), not " + std::to_string(settings.threads));
 }
 
+/// Throws ArgumentError unless `skin` is finite and not negative.
+inline void check_skin(double skin, const std::string& settings_name) {
+    if (!(skin >= 0) || !std::isfinite(skin))
+        throw ArgumentError(settings_name + "::skin must be finite and at least 0, not " + shortest_number(skin));
+}
+
 /// `settings`, or ArgumentError naming the first field that does not fit.
 [[nodiscard]] inline WorldSettings validated_settings(const WorldSettings& settings) {
     check_detection_settings(settings, "WorldSettings");
+    check_skin(settings.skin, "WorldSettings");
     if (settings.pipeline != Pipeline::persistent_cuts && settings.pipeline != Pipeline::paper_lists)
         throw ArgumentError("WorldSettings::pipeline is not a known Pipeline");
     if (settings.segment_rule != SegmentRule::from_count && settings.segment_rule != SegmentRule::twice_largest_box)
         throw ArgumentError("WorldSettings::segment_rule is not a known SegmentRule");
+    if (settings.skin > 0 && settings.pipeline == Pipeline::paper_lists)
+        throw ArgumentError("WorldSettings::skin needs Pipeline::persistent_cuts (the paper's lists keep no skin)");
     return settings;
 }
 
 /// `settings`, or ArgumentError naming the first field that does not fit.
 [[nodiscard]] inline DetectorSettings validated_settings(const DetectorSettings& settings) {
     check_detection_settings(settings, "DetectorSettings");
-    if (!(settings.skin >= 0) || !std::isfinite(settings.skin))
-        throw ArgumentError("DetectorSettings::skin must be finite and at least 0, not " +
-                            shortest_number(settings.skin));
+    check_skin(settings.skin, "DetectorSettings");
     return settings;
 }
 

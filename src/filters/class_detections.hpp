@@ -8,6 +8,8 @@
 // from the list would shift every index past a removed box, and with a few removals a step the
 // pipelines would find no box where they left it).
 // A class whose values pass with none of its own is not gathered at all.
+// Each array is detected by a detection engine of its own (engine/detection_engine.hpp), its
+// pairs passing through the filters (filtered_report.hpp) on their way out.
 
 #include <cstddef>
 #include <cstdint>
@@ -15,8 +17,7 @@
 #include <vector>
 
 #include "core/box_store.hpp"
-#include "core/scene_bounds.hpp"
-#include "cuts/held_cut_pipeline.hpp"
+#include "engine/detection_engine.hpp"
 #include "filters/class_stats.hpp"
 #include "filters/filtered_report.hpp"
 #include "filters/interaction_classes.hpp"
@@ -26,6 +27,23 @@
 #include "smb/stats.hpp"
 
 namespace smb::detail {
+
+/// Detects `boxes` (valid) with `engine`, each pair passing the filters and the predicate (if
+/// not null) on its way to `output`: by the boxes' packed keys where `packed`, otherwise by
+/// index into `info`.
+template <std::floating_point Real, int Dim, class Output>
+void detect_gathered(DetectionEngine<Real, Dim>& engine, std::span<const Box<Real, Dim>> boxes,
+                     std::span<const BoxId> keys, std::span<const IdFilter> info, bool packed,
+                     const DetectionSettings& settings, double skin, Output& output, const PairPredicate* predicate,
+                     DetectStats& stats) {
+    if (packed) {
+        PackedFilterReport<Output> report(output, predicate);
+        engine.detect({boxes, keys, nullptr, true}, settings, skin, report, stats);
+    } else {
+        FilteredReport<Output> report(output, info, predicate);
+        engine.detect({boxes, {}, nullptr, true}, settings, skin, report, stats);
+    }
+}
 
 template <std::floating_point Real, int Dim>
 class ClassDetections {
@@ -102,25 +120,16 @@ public:
     /// Reports the pairs of every class that passes, through the predicate if not null. The
     /// stats of the passes add up over the classes.
     template <class Output>
-    void detect(const DetectionSettings& settings, Output& output, const PairPredicate* predicate, DetectStats& stats) {
+    void detect(const DetectionSettings& settings, double skin, Output& output, const PairPredicate* predicate,
+                DetectStats& stats) {
         for (ClassDetection& c : classes_) {
             if (c.boxes.empty()) {
-                c.pipeline.clear();
+                c.engine.clear();
                 continue;
             }
             DetectStats part;
-            const std::span<const box_type> boxes(c.boxes);
-            SceneBounds<Real, Dim> bounds;
-            if constexpr (HeldCutPipeline<Real, Dim>::kMayRound) bounds = checked_bounds(boxes);
-            c.pipeline.judge(boxes, bounds);
-            c.pipeline.forget_slots_from(boxes.size());
-            if (c.packed) {
-                PackedFilterReport<Output> report(output, predicate);
-                c.pipeline.detect(boxes, c.keys, bounds, settings, report, part);
-            } else {
-                FilteredReport<Output> report(output, c.info, predicate);
-                c.pipeline.detect(boxes, {}, bounds, settings, report, part);
-            }
+            detect_gathered<Real, Dim>(c.engine, c.boxes, c.keys, c.info, c.packed, settings, skin, output, predicate,
+                                       part);
             add_class_stats(stats, part);
         }
     }
@@ -129,21 +138,21 @@ public:
     [[nodiscard]] HeldPrecision precision() const noexcept {
         HeldPrecision held = HeldPrecision::none;
         for (const ClassDetection& c : classes_) {
-            if (c.pipeline.precision() == HeldPrecision::doubles) return HeldPrecision::doubles;
-            if (c.pipeline.precision() != HeldPrecision::none) held = c.pipeline.precision();
+            if (c.engine.precision() == HeldPrecision::doubles) return HeldPrecision::doubles;
+            if (c.engine.precision() != HeldPrecision::none) held = c.engine.precision();
         }
         return held;
     }
     [[nodiscard]] std::size_t retested() const noexcept {
         std::size_t n = 0;
-        for (const ClassDetection& c : classes_) n += c.pipeline.retested();
+        for (const ClassDetection& c : classes_) n += c.engine.retested();
         return n;
     }
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes = classes_.capacity() * sizeof(ClassDetection) + class_of_.capacity() +
                             index_.capacity() * sizeof(std::uint32_t);
         for (const ClassDetection& c : classes_) {
-            bytes += c.members.capacity() * sizeof(Slot) + c.pipeline.bytes_held() +
+            bytes += c.members.capacity() * sizeof(Slot) + c.engine.bytes_held() +
                      c.boxes.capacity() * sizeof(box_type) + c.info.capacity() * sizeof(IdFilter) +
                      c.keys.capacity() * sizeof(BoxId);
         }
@@ -153,7 +162,7 @@ public:
 private:
     struct ClassDetection {
         std::vector<Slot> members;  // positions in the list of moving boxes, each at its index
-        HeldCutPipeline<Real, Dim> pipeline;
+        DetectionEngine<Real, Dim> engine;
         std::vector<box_type> boxes;
         std::vector<IdFilter> info;  // index i's id and filter
         std::vector<BoxId> keys;     // index i's key for the pipeline, when packed

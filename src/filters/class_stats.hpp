@@ -13,6 +13,9 @@ inline void add_class_stats(DetectStats& total, const DetectStats& part) {
     total.cells += part.cells;
     total.oversized_boxes += part.oversized_boxes;
     total.sort_moves += part.sort_moves;
+    total.skin_candidates += part.skin_candidates;
+    total.skin_refreshed += part.skin_refreshed;
+    total.skin_rebuilt = total.skin_rebuilt || part.skin_rebuilt;
     total.containment_seconds += part.containment_seconds;
     total.quantile_seconds += part.quantile_seconds;
     total.list_sort_seconds += part.list_sort_seconds;

@@ -2,8 +2,8 @@
 #pragma once
 // A Detector's filtered detection split by interaction classes (interaction_classes.hpp). Where
 // the filters make two classes or more, each class whose boxes can pair within is gathered into
-// an array of its own and detected by a detector state of its own, whose persistent cuts then
-// follow that class from call to call. Two layers that ignore each other cost their two
+// an array of its own and detected by a detection engine of its own (engine/detection_engine.hpp),
+// whose persistent cuts then follow that class from call to call. Two layers that ignore each other cost their two
 // detections, not one detection of all their boxes in which the pairs across the layers are
 // found and dropped. The pairs still pass through the filtered sink (the bits, the static flags,
 // the predicate), which maps them back to the caller's indices.
@@ -15,6 +15,8 @@
 #include <span>
 #include <vector>
 
+#include "core/pair_output.hpp"
+#include "engine/detection_engine.hpp"
 #include "filters/class_stats.hpp"
 #include "filters/filtered_sink.hpp"
 #include "filters/interaction_classes.hpp"
@@ -25,9 +27,6 @@
 #include "smb/stats.hpp"
 
 namespace smb::detail {
-
-template <std::floating_point Real, int Dim>
-class DetectorState;
 
 template <std::floating_point Real, int Dim>
 class DetectorClasses {
@@ -47,15 +46,19 @@ public:
         for (std::size_t c = 0; c < parts_.size(); ++c) {
             Part& part = parts_[c];
             if (part.members.empty()) {
-                part.state.reset();
+                part.engine.reset();
                 std::vector<Box<Real, Dim>>().swap(part.boxes);
                 continue;
             }
             part.boxes.resize(part.members.size());
             for (std::size_t k = 0; k < part.members.size(); ++k) part.boxes[k] = boxes[part.members[k]];
-            if (!part.state) part.state = std::make_unique<DetectorState<Real, Dim>>(settings);
+            if (!part.engine) part.engine = std::make_unique<DetectionEngine<Real, Dim>>();
             FilteredSink filtered(filters, sink, settings.pair_chunk_size, part.members, !classes_.all_pass_within(c));
-            const DetectStats own = part.state->detect(part.boxes, PairSink(std::ref(filtered)));
+            const PairSink filtered_sink(std::ref(filtered));
+            DetectStats own;
+            PairOutput output{chunk_, settings.pair_chunk_size, filtered_sink, own.pairs};
+            part.engine->detect({part.boxes, {}, nullptr, true}, settings, settings.skin, output, own);
+            output.flush();
             reported += filtered.finish();
             add_class_stats(stats, own);
         }
@@ -69,8 +72,8 @@ public:
     [[nodiscard]] HeldPrecision precision() const noexcept {
         HeldPrecision held = HeldPrecision::none;
         for (const Part& part : parts_) {
-            if (!part.state) continue;
-            const HeldPrecision own = part.state->last_precision();
+            if (!part.engine) continue;
+            const HeldPrecision own = part.engine->precision();
             if (own == HeldPrecision::doubles) return own;
             if (own != HeldPrecision::none) held = own;
         }
@@ -78,13 +81,14 @@ public:
     }
     [[nodiscard]] std::size_t retested() const noexcept {
         std::size_t n = 0;
-        for (const Part& part : parts_) n += part.state ? part.state->last_retested_pairs() : 0;
+        for (const Part& part : parts_) n += part.engine ? part.engine->retested() : 0;
         return n;
     }
 
     void clear() {
         classes_.clear();
         std::vector<Part>().swap(parts_);
+        std::vector<Pair>().swap(chunk_);
         std::vector<std::uint8_t>().swap(class_of_index_);
         std::vector<std::uint32_t>().swap(position_of_index_);
         split_ = false;
@@ -92,10 +96,10 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes = classes_.bytes_held() + parts_.capacity() * sizeof(Part) + class_of_index_.capacity() +
-                            position_of_index_.capacity() * sizeof(std::uint32_t);
+                            position_of_index_.capacity() * sizeof(std::uint32_t) + chunk_.capacity() * sizeof(Pair);
         for (const Part& part : parts_) {
             bytes += part.boxes.capacity() * sizeof(Box<Real, Dim>) + part.members.capacity() * sizeof(std::uint32_t);
-            if (part.state) bytes += part.state->bytes_held();
+            if (part.engine) bytes += sizeof(DetectionEngine<Real, Dim>) + part.engine->bytes_held();
         }
         return bytes;
     }
@@ -105,10 +109,10 @@ private:
 
     /// One class: the caller's indices of its boxes, each kept at its position from call to call
     /// (an index that leaves is swap-removed, one that joins is appended), so that the class's
-    /// detector finds the same box at the same index; a list in index order would shift every
+    /// engine finds the same box at the same index; a list in index order would shift every
     /// member past one that left, and the persistent cuts would find no box where they left it.
     struct Part {
-        std::unique_ptr<DetectorState<Real, Dim>> state;
+        std::unique_ptr<DetectionEngine<Real, Dim>> engine;
         std::vector<std::uint32_t> members;
         std::vector<Box<Real, Dim>> boxes;  // box of members[k] at k
     };
@@ -173,6 +177,7 @@ private:
     std::vector<Part> parts_;
     std::vector<std::uint8_t> class_of_index_;      // per caller index, kNoClass when in none
     std::vector<std::uint32_t> position_of_index_;  // its position among its class's members
+    std::vector<Pair> chunk_;                       // the classes' pairs on their way to the filters
     bool split_ = false;
 };
 

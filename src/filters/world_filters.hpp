@@ -4,8 +4,8 @@
 // default detection in world_state.hpp stays as it is, one branch away). Per slot of the store:
 // the filter words, the static flag and the position in the list of moving boxes. The moving
 // boxes that can pair with something (not static, category and mask not 0) are gathered, in the
-// order of that list, into one array and detected with their own persistent-cut pipeline, as a
-// Detector detects an array; their pairs are filtered by index (filtered_report.hpp). The
+// order of that list, into one array and detected by a detection engine of their own
+// (engine/detection_engine.hpp), as a Detector detects an array; their pairs are filtered by index (filtered_report.hpp). The
 // statics stay out of it: each moving box meets them through its cache (static_contacts.hpp)
 // over a grid of the statics (static_grid.hpp), built again only when the statics change.
 // Where the filter values split the moving boxes into classes that cannot pair with each other
@@ -24,10 +24,9 @@
 
 #include "core/box_store.hpp"
 #include "core/pair_output.hpp"
-#include "core/scene_bounds.hpp"
 #include "core/slot_renumbering.hpp"
 #include "core/stopwatch.hpp"
-#include "cuts/held_cut_pipeline.hpp"
+#include "engine/detection_engine.hpp"
 #include "filters/class_detections.hpp"
 #include "filters/filtered_report.hpp"
 #include "filters/interaction_classes.hpp"
@@ -57,10 +56,10 @@ public:
         return slot < statics_flag_.size() && statics_flag_[slot];
     }
     [[nodiscard]] HeldPrecision precision() const noexcept {
-        return split() ? class_detections_.precision() : pipeline_.precision();
+        return split() ? class_detections_.precision() : engine_.precision();
     }
     [[nodiscard]] std::size_t retested() const noexcept {
-        return split() ? class_detections_.retested() : pipeline_.retested();
+        return split() ? class_detections_.retested() : engine_.retested();
     }
 
     void set_filter(Slot slot, const Filter& filter, std::size_t slot_count) {
@@ -116,7 +115,7 @@ public:
     /// Gives back everything the filtered detection held; the filters, statics and predicate
     /// are kept (a detection that finds none in use calls it and runs the default path).
     void disengage() {
-        pipeline_.clear();
+        engine_.clear();
         grid_.clear();
         contacts_.clear();
         classes_.clear();
@@ -140,8 +139,9 @@ public:
     void clear() { *this = WorldFilters(); }
 
     /// The filtered detection: compacts the store (the caller's pipelines were told to forget
-    /// it when this path engaged), then reports every pair that passes.
-    void detect(BoxStore<Real, Dim>& store, const DetectionSettings& settings, PairOutput& output, DetectStats& stats) {
+    /// it when this path engaged), then reports every pair that passes; `skin` as the engine's.
+    void detect(BoxStore<Real, Dim>& store, const DetectionSettings& settings, double skin, PairOutput& output,
+                DetectStats& stats) {
         const Stopwatch update;
         if (!engaged_) {
             engaged_ = true;
@@ -169,28 +169,14 @@ public:
         stats.boxes = store.slot_count();
 
         const PairPredicate* predicate = predicate_ ? &predicate_ : nullptr;
-        if (split()) {
-            class_detections_.detect(settings, output, predicate, stats);
-        } else if (gathered_.empty()) {
-            pipeline_.detect_nothing(settings, output, stats);
-        } else {
-            const Stopwatch scan;
-            const std::span<const box_type> boxes(gathered_);
-            SceneBounds<Real, Dim> bounds;
-            if constexpr (HeldCutPipeline<Real, Dim>::kMayRound) bounds = checked_bounds(boxes);
-            pipeline_.judge(boxes, bounds);
-            pipeline_.forget_slots_from(boxes.size());
-            stats.scan_seconds = scan.seconds();
-            if (packed_) {
-                PackedFilterReport<PairOutput> report(output, predicate);
-                pipeline_.detect(boxes, gathered_keys_, bounds, settings, report, stats);
-            } else {
-                FilteredReport<PairOutput> report(output, gathered_info_, predicate);
-                pipeline_.detect(boxes, {}, bounds, settings, report, stats);
-            }
-        }
-        stats.skin_rebuilt = statics_rebuilt;
+        if (split())
+            class_detections_.detect(settings, skin, output, predicate, stats);
+        else
+            detect_gathered<Real, Dim>(engine_, gathered_, gathered_keys_, gathered_info_, packed_, settings, skin,
+                                       output, predicate, stats);
         contacts_.detect(gathered_, gathered_info_, grid_, predicate, output);
+        if (skin > 0) return;  // the skin's own figures stand in the stats
+        stats.skin_rebuilt = statics_rebuilt;
         stats.skin_refreshed = contacts_.refreshed();
         stats.skin_candidates = contacts_.cached();
     }
@@ -199,7 +185,7 @@ public:
         return filters_.capacity() * sizeof(Filter) + statics_flag_.capacity() +
                (pending_.capacity() + moving_.capacity() + position_.capacity()) * sizeof(Slot) +
                gathered_.capacity() * sizeof(box_type) + gathered_keys_.capacity() * sizeof(BoxId) +
-               gathered_info_.capacity() * sizeof(IdFilter) + pipeline_.bytes_held() + grid_.bytes_held() +
+               gathered_info_.capacity() * sizeof(IdFilter) + engine_.bytes_held() + grid_.bytes_held() +
                contacts_.bytes_held() + classes_.bytes_held() + class_detections_.bytes_held();
     }
 
@@ -220,7 +206,7 @@ private:
             class_detections_.reset(classes_.count());
             for (std::size_t i = 0; i < moving_.size(); ++i)
                 class_detections_.join(static_cast<Slot>(i), classes_.class_of(filters_[moving_[i]]));
-            pipeline_.clear();
+            engine_.clear();
         } else {
             class_detections_.clear();
         }
@@ -369,7 +355,7 @@ private:
     std::vector<IdFilter> gathered_info_;  // index i's id and filter
     std::vector<BoxId> gathered_keys_;     // index i's key for the pipeline, when packed_
     bool packed_ = false;
-    HeldCutPipeline<Real, Dim> pipeline_;
+    DetectionEngine<Real, Dim> engine_;
     StaticGrid<Real, Dim> grid_;
     StaticContacts<Real, Dim> contacts_;
     InteractionClasses classes_;

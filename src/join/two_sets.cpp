@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/invalid_box.hpp"
+#include "instantiations.hpp"
 #include "join/set_cull.hpp"
 #include "smb/detector.hpp"
 #include "smb/join.hpp"
@@ -101,12 +102,7 @@ std::vector<Pair> find_overlapping_pairs(std::span<const Box<Real, Dim>> first, 
 #define SMB_INSTANTIATE(Real, Dim)                                \
     template std::vector<Pair> find_overlapping_pairs<Real, Dim>( \
         std::span<const Box<Real, Dim>>, std::span<const Box<Real, Dim>>, const WorldSettings&);
-
-SMB_INSTANTIATE(float, 2)
-SMB_INSTANTIATE(double, 2)
-SMB_INSTANTIATE(float, 3)
-SMB_INSTANTIATE(double, 3)
-
+SMB_FOR_EACH_BOX_TYPE(SMB_INSTANTIATE)
 #undef SMB_INSTANTIATE
 
 }  // namespace smb

@@ -14,63 +14,35 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "core/assert.hpp"
-#include "core/box_store.hpp"
+#include "core/slot_renumbering.hpp"
 #include "core/stopwatch.hpp"
 #include "paper/axial_cut.hpp"
 #include "paper/axis_entry.hpp"
 #include "paper/cell_check.hpp"
 #include "paper/cell_lists.hpp"
 #include "paper/global_local_map.hpp"
+#include "paper/list_growth.hpp"
 #include "paper/mask_array.hpp"
 #include "paper/oversized_sweep.hpp"
 #include "paper/paper_level.hpp"
 #include "paper/segment_rule.hpp"
 #include "paper/shell_sort.hpp"
 #include "paper/singular_regroup.hpp"
+#include "smb/held_precision.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
 namespace smb::detail {
 
-/// Grows `list` to hold `length` items with a sixteenth to spare, and gives back what is more
-/// than a quarter above it: vectors that double would hold up to twice the lists' bytes, and
-/// more after N has shrunk.
-template <class Vector>
-void fit_capacity(Vector& list, std::size_t length) {
-    if (length > list.capacity()) {
-        list.reserve(length + length / 16);
-    } else if (list.capacity() > length + length / 4 && list.capacity() > 4096) {
-        Vector smaller;
-        smaller.reserve(std::max(length, list.size()) + length / 16);
-        smaller.assign(list.begin(), list.end());
-        list.swap(smaller);
-    }
-}
-
-/// Merges the sorted `arrivals` into the sorted `list` in place, from the back.
-template <class Entry>
-void merge_from_back(std::vector<Entry>& list, const std::vector<Entry>& arrivals) {
-    std::size_t kept = list.size();
-    std::size_t arrived = arrivals.size();
-    list.resize(kept + arrived);
-    std::size_t out = list.size();
-    while (arrived > 0) {
-        if (kept > 0 && entry_less(arrivals[arrived - 1], list[kept - 1])) {
-            list[--out] = list[--kept];
-        } else {
-            list[--out] = arrivals[--arrived];
-        }
-    }
-}
-
 template <std::floating_point Real, int Dim>
 class PaperPipeline {
 public:
-    PaperPipeline(const BoxStore<Real, Dim>* store, const WorldSettings* settings)
-        : store_(store), settings_(settings) {}
+    explicit PaperPipeline(const WorldSettings& settings)
+        : segment_rule_(settings.segment_rule), target_cell_population_(settings.target_cell_population) {}
 
     /// Renumbers every list after BoxStore::compact() dropped removed slots, keeping each
     /// list's order (the paper's remark 3 of Section 2.4: renumber, never rebuild).
@@ -78,9 +50,17 @@ public:
 
     /// Slots [0, listed()) are in the lists; later ones arrived since the last detection.
     [[nodiscard]] std::size_t listed() const noexcept { return listed_; }
+    /// The lists hold the boxes as they are; none before a detection of some boxes.
+    [[nodiscard]] HeldPrecision precision() const noexcept {
+        if (listed_ == 0) return HeldPrecision::none;
+        return std::is_same_v<Real, float> ? HeldPrecision::floats : HeldPrecision::doubles;
+    }
+    [[nodiscard]] static std::size_t retested() noexcept { return 0; }
 
+    /// Reports every overlapping pair of `boxes` (valid; slot s of a BoxStore at index s) as
+    /// report(slot_a, slot_b).
     template <class Report>
-    void detect(Report& report, DetectStats& stats);
+    void detect(std::span<const Box<Real, Dim>> boxes, Report& report, DetectStats& stats);
 
     [[nodiscard]] std::size_t bytes_held() const noexcept;
 
@@ -111,8 +91,9 @@ private:
     std::size_t check_cells(Report& report);
     void check_invariants() const;
 
-    const BoxStore<Real, Dim>* store_;
-    const WorldSettings* settings_;
+    SegmentRule segment_rule_;
+    std::size_t target_cell_population_;
+    std::span<const Box<Real, Dim>> boxes_;  // of the detection under way
 
     std::array<Level, Dim> levels_;
     std::array<std::vector<Item>, Dim - 1> cell_lists_;  // the paper's Y2 (2D); Y2, Z2 (3D)
@@ -134,11 +115,12 @@ private:
 
 template <std::floating_point Real, int Dim>
 template <class Report>
-void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
-    const std::size_t n = store_->slot_count();
+void PaperPipeline<Real, Dim>::detect(std::span<const Box<Real, Dim>> boxes, Report& report, DetectStats& stats) {
+    boxes_ = boxes;
+    const std::size_t n = boxes_.size();
     if (n > 0) {
         choose_cuts();
-        const std::array<Real, Dim> shortest = shortest_segments<Real, Dim>(settings_->segment_rule, store_->boxes());
+        const std::array<Real, Dim> shortest = shortest_segments<Real, Dim>(segment_rule_, boxes_);
         fit_capacity(segment_of_, n << Dim);  // the deepest level's length: the longest
         Stopwatch phase;
         double sorting = 0;
@@ -194,7 +176,7 @@ void PaperPipeline<Real, Dim>::detect(Report& report, DetectStats& stats) {
 
         stats.largest_cell_boxes = check_cells(report);
         if (oversized_count_ > 0) {
-            oversized_sweep_.run(levels_[0].list, oversized_, store_->boxes(), report);
+            oversized_sweep_.run(levels_[0].list, oversized_, boxes_, report);
         }
         stats.check_seconds = phase.seconds();
 #ifdef SMB_VALIDATE
@@ -223,8 +205,7 @@ void PaperPipeline<Real, Dim>::fold_removals(const SlotRenumbering& renumbering)
 /// and turns every item singular for one step.
 template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::choose_cuts() {
-    const double cells =
-        static_cast<double>(store_->slot_count()) / static_cast<double>(settings_->target_cell_population);
+    const double cells = static_cast<double>(boxes_.size()) / static_cast<double>(target_cell_population_);
     const double ideal = std::max(1.0, std::pow(cells, 1.0 / Dim));
     const double current = static_cast<double>(cuts_);
     if (cuts_ == 0 || ideal > 1.25 * current || ideal < 0.8 * current) {
@@ -234,7 +215,7 @@ void PaperPipeline<Real, Dim>::choose_cuts() {
 
 template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::refresh_keys(Level& level, int depth) {
-    const auto boxes = store_->boxes();
+    const auto boxes = boxes_;
     const int axis = axis_of_level(depth);
     const int shift = depth + 1;
     for (Entry& entry : level.list) {
@@ -247,7 +228,7 @@ void PaperPipeline<Real, Dim>::refresh_keys(Level& level, int depth) {
 template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::collect_arrivals(int depth) {
     arrivals_.clear();
-    const auto boxes = store_->boxes();
+    const auto boxes = boxes_;
     const int axis = axis_of_level(depth);
     const int shift = depth + 1;
     for (std::size_t slot = listed_; slot < boxes.size(); ++slot) {
@@ -282,7 +263,7 @@ void PaperPipeline<Real, Dim>::release_oversized_scratch() {
 /// level is judged right after its cut, while the index array holds its segments.
 template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::mark_oversized(int depth) {
-    const std::size_t n = store_->slot_count();
+    const std::size_t n = boxes_.size();
     for (std::size_t slot = 0; slot < n; ++slot) {
         if (oversized_[slot]) continue;
         const Item first = static_cast<Item>(slot) << (depth + 1);
@@ -313,7 +294,7 @@ void PaperPipeline<Real, Dim>::build_cell_lists() {
 template <std::floating_point Real, int Dim>
 template <class Report>
 std::size_t PaperPipeline<Real, Dim>::check_cells(Report& report) {
-    const std::size_t n = store_->slot_count();
+    const std::size_t n = boxes_.size();
     const Level& deepest = levels_[Dim - 1];
     const auto& cell_begin = deepest.segment_begin;
     const std::size_t cells = cell_begin.size() - 1;
@@ -336,7 +317,7 @@ std::size_t PaperPipeline<Real, Dim>::check_cells(Report& report) {
                     std::span<const Item>(cell_lists_[static_cast<std::size_t>(depth)].data() + first, size);
             }
             lists.deepest = std::span<const Entry>(deepest.list.data() + first, size);
-            checker_.check(lists, oversized_, store_->boxes(), map_, mask_, report);
+            checker_.check(lists, oversized_, boxes_, map_, mask_, report);
             largest = std::max(largest, map_.boxes().size());
             for (const std::uint32_t slot : map_.boxes()) mask_.mark_cell_done(slot, Dim - 1);
             map_.clear_cell();
@@ -356,7 +337,7 @@ std::size_t PaperPipeline<Real, Dim>::check_cells(Report& report) {
 
 template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::check_invariants() const {
-    const std::size_t n = store_->slot_count();
+    const std::size_t n = boxes_.size();
     std::vector<SegmentId> parent_segment_of;
     std::vector<SegmentId> segment_of;
     for (int depth = 0; depth < Dim; ++depth) {
@@ -375,7 +356,7 @@ void PaperPipeline<Real, Dim>::check_invariants() const {
                 const Entry& entry = level.list[i];
                 SMB_ASSERT(entry.item < seen.size() && !seen[entry.item], "list is a permutation");
                 seen[entry.item] = 1;
-                const auto& box = store_->box_at(entry.item >> shift);
+                const auto& box = boxes_[entry.item >> shift];
                 const int axis = axis_of_level(depth);
                 SMB_ASSERT(entry.key == (end_of(entry.item) == 0 ? box.min[axis] : box.max[axis]),
                            "key matches its box");

@@ -78,29 +78,38 @@ public:
 
     /// Candidates and tombstones.
     [[nodiscard]] std::size_t size() const noexcept { return candidates_.size(); }
-    /// The list as it stands: candidates, and tombstones (a == b) to skip.
-    [[nodiscard]] std::span<const Candidate> entries() const noexcept { return candidates_; }
     /// Candidates without the tombstones.
     [[nodiscard]] std::size_t live() const noexcept { return candidates_.size() - tombstones_; }
+    /// The live candidates as pairs of names (name_of[position]), a < b, in the order of the list.
+    void pairs_named(std::span<const Slot> name_of, std::vector<Pair>& out) const {
+        out.clear();
+        out.reserve(live());
+        for (const Candidate& candidate : candidates_) {
+            if (candidate.a == candidate.b) continue;  // a tombstone
+            const BoxId a = name_of[candidate.a];
+            const BoxId b = name_of[candidate.b];
+            out.push_back(a < b ? Pair{a, b} : Pair{b, a});
+        }
+    }
 
     /// What a pass reads: the held boxes by position (one more of padding, for overlap_bits()),
     /// the positions dropped in this detection (a bit each), the sure margin, the caller's index
     /// of each position, and confirm(a, b, sure, retested), which says whether a pair the floats
     /// pass holds for the input too, counting in `retested` the pairs it tests again.
-    template <class Confirm>
+    template <class Confirm, class Name>
     struct Pass {
         const Held* held;
         const std::uint64_t* dirty;
         float sure_margin;
-        std::span<const Slot> slot_of;
+        std::span<const Name> name_of;  // the name each position's pairs are reported under
         const Confirm& confirm;
     };
 
     /// Tests every candidate, after dropping those of boxes marked in pass.dirty when `dropping`,
     /// and reports the pairs in the order of the list, whatever the number of threads. Returns the
     /// pairs tested again on the input.
-    template <class Confirm, class Report>
-    std::size_t test(const Pass<Confirm>& pass, bool dropping, int threads, Report& report) {
+    template <class Confirm, class Name, class Report>
+    std::size_t test(const Pass<Confirm, Name>& pass, bool dropping, int threads, Report& report) {
         const std::size_t count = candidates_.size();
         workers_.resize(threads);
         std::size_t retested = 0;
@@ -152,8 +161,8 @@ private:
     /// Several threads: blocks of candidates in rounds, each block's pairs buffered, handed to
     /// the report in list order on the calling thread (ordered_rounds.hpp). After a throwing
     /// sink the blocks left are not tested; the list is rebuilt at the next detection anyway.
-    template <class Confirm, class Report>
-    std::size_t test_in_rounds(const Pass<Confirm>& pass, bool dropping, int threads, Report& report) {
+    template <class Confirm, class Name, class Report>
+    std::size_t test_in_rounds(const Pass<Confirm, Name>& pass, bool dropping, int threads, Report& report) {
         const std::size_t count = candidates_.size();
         const std::size_t blocks = (count + kBlockCandidates - 1) / kBlockCandidates;
         const std::size_t round = 4 * static_cast<std::size_t>(threads);
@@ -179,8 +188,8 @@ private:
     /// Candidates [first, last) into `out`; flush() is called whenever a run of hits has become
     /// pairs. Branch-free over the candidates (about half of them overlap, which no predictor
     /// guesses).
-    template <class Confirm, class Flush>
-    void test_range(const Pass<Confirm>& pass, std::size_t first, std::size_t last, bool dropping, Worker& worker,
+    template <class Confirm, class Name, class Flush>
+    void test_range(const Pass<Confirm, Name>& pass, std::size_t first, std::size_t last, bool dropping, Worker& worker,
                     Block& out, Flush&& flush) {
         constexpr std::size_t kRun = 2048;
         worker.hits.resize(kRun);
@@ -216,14 +225,14 @@ private:
     }
 
     /// The pairs of a run of hits, each confirmed on the input where the floats cannot settle it.
-    template <class Confirm>
-    static void pairs_of_hits(const Pass<Confirm>& pass, std::size_t hits, const Worker& worker, Block& out) {
+    template <class Confirm, class Name>
+    static void pairs_of_hits(const Pass<Confirm, Name>& pass, std::size_t hits, const Worker& worker, Block& out) {
         for (std::size_t i = 0; i < hits; ++i) {
             const Candidate hit = worker.hits[i];
             if (hit.a == hit.b) continue;  // a tombstone
             if (!pass.confirm(hit.a, hit.b, worker.sure[i] != 0, out.retested)) continue;
-            const BoxId a = pass.slot_of[hit.a];
-            const BoxId b = pass.slot_of[hit.b];
+            const BoxId a = pass.name_of[hit.a];
+            const BoxId b = pass.name_of[hit.b];
             out.pairs.push_back(a < b ? Pair{a, b} : Pair{b, a});
         }
     }

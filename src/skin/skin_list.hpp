@@ -42,6 +42,7 @@
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "skin/candidate_list.hpp"
 #include "skin/candidate_lives.hpp"
+#include "skin/fat_boxes.hpp"
 #include "skin/held_overlap.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
@@ -55,17 +56,20 @@ class SkinList {
 public:
     using Held = Box<float, Dim>;
 
-    /// Reports every overlapping pair of `input` (box i under id i) to report(i, j). `origin`:
+    /// Reports every overlapping pair of `input` (box i under keys[i], or under i where `keys` is
+    /// empty) to report(key_i, key_j), or in runs to report.append(). `origin`:
     /// where held coordinates start (held_box.hpp; zero for float input). Returns false, having
     /// reported nothing and released its memory, when the fat boxes make more candidates than
     /// it will hold (about 32 per box), when a quarter of the boxes left their fat boxes since
     /// the last detection (a skin far too thin for the motion), or after two short lives of the
     /// candidates running (candidate_lives.hpp): the caller then detects without a skin.
     template <class Report>
-    bool detect(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
-                const std::array<Input, Dim>& scene_lo, const std::array<Input, Dim>& scene_hi, double skin,
-                const DetectionSettings& settings, Report& report, DetectStats& stats) {
+    bool detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> keys,
+                const std::array<Input, Dim>& origin, const std::array<Input, Dim>& scene_lo,
+                const std::array<Input, Dim>& scene_hi, double skin, const DetectionSettings& settings, Report& report,
+                DetectStats& stats) {
         input_ = input;
+        keys_ = keys;
         threads_ = thread_count(settings);
         sure_margin_ = kExact ? 0.0F : held_sure_margin<Input, Dim>(origin, scene_lo, scene_hi);
         retested_ = 0;
@@ -112,38 +116,12 @@ public:
 
     /// The live candidates of the last detection as pairs of the caller's indices, a < b, in
     /// the order of the list (smb/candidate_pairs.hpp).
-    void candidate_pairs(std::vector<Pair>& out) const {
-        out.clear();
-        out.reserve(candidates_.live());
-        for (const auto& candidate : candidates_.entries()) {
-            if (candidate.a == candidate.b) continue;  // a tombstone
-            const BoxId a = slot_of_[candidate.a];
-            const BoxId b = slot_of_[candidate.b];
-            out.push_back(a < b ? Pair{a, b} : Pair{b, a});
-        }
-    }
+    void candidate_pairs(std::vector<Pair>& out) const { candidates_.pairs_named(slot_of_, out); }
 
     /// The least distance from a box of the last detection to a face of its fat box, on the
-    /// caller's coordinates. Measured on the held floats, then lowered by their rounding: a
-    /// held coordinate is within half a float step of the shifted input (held_box.hpp), at most
-    /// 2^-24 of the largest held magnitude, so 2^-22 of it covers both boxes' sides.
+    /// caller's coordinates (fat_boxes.hpp).
     [[nodiscard]] double candidate_margin() const noexcept {
-        const std::size_t n = input_.size();
-        double least = skin_;
-        double largest = 0;
-        for (std::size_t p = 0; p < slot_of_.size(); ++p) {
-            if (slot_of_[p] >= n) continue;
-            const Held& box = held_[p];
-            const Held& fat = fat_[p];
-            for (int k = 0; k < Dim; ++k) {
-                least = std::min(least, static_cast<double>(box.min[k]) - static_cast<double>(fat.min[k]));
-                least = std::min(least, static_cast<double>(fat.max[k]) - static_cast<double>(box.max[k]));
-                largest = std::max(
-                    {largest, std::abs(static_cast<double>(fat.min[k])), std::abs(static_cast<double>(fat.max[k]))});
-            }
-        }
-        if (!kExact) least -= std::ldexp(largest, -22) + std::ldexp(1.0, -140);
-        return std::max(least, 0.0);
+        return least_skin_left<kExact, Dim>(held_, fat_, slot_of_, input_.size(), skin_);
     }
 
     void clear() { *this = SkinList(); }
@@ -153,7 +131,8 @@ public:
                             (slot_of_.capacity() + position_of_.capacity() + moved_.capacity() + fresh_.capacity()) *
                                 sizeof(std::uint32_t) +
                             state_.capacity() + gone_.capacity() * sizeof(Position) +
-                            dirty_.capacity() * sizeof(std::uint64_t) + candidates_.bytes_held();
+                            dirty_.capacity() * sizeof(std::uint64_t) + key_of_.capacity() * sizeof(BoxId) +
+                            candidates_.bytes_held();
         return bytes + scans_.bytes_held([](const Scan& scan) {
             return (scan.fresh.capacity() + scan.gone.capacity()) * sizeof(Position);
         });
@@ -165,32 +144,7 @@ private:
     /// Below this many positions one thread does the scan alone.
     static constexpr std::size_t kParallelFrom = std::size_t{1} << 15;
 
-    // Per position.
-    static constexpr std::uint8_t kMoved = 1;  // fat box changed since the rebuild (or new): not in the cells
-    static constexpr std::uint8_t kFresh = 2;  // fat box changed in this detection
-    static constexpr std::uint8_t kGone = 4;   // its slot is past the caller's array
-    static constexpr std::uint8_t kDone = 8;   // fresh, and its new candidates are found already
-
     static constexpr bool kExact = std::same_as<Input, float>;  // held boxes are the input's own
-
-    [[nodiscard]] static std::size_t candidate_cap(std::size_t n) noexcept { return 32 * n + (std::size_t{1} << 20); }
-    /// The moved list is tested against every fresh box: past this length a rebuild is cheaper.
-    [[nodiscard]] static std::size_t moved_limit(std::size_t n) noexcept { return std::max<std::size_t>(64, n / 64); }
-
-    [[nodiscard]] Held fattened(const Held& held) const noexcept {
-        Held fat;
-        for (int k = 0; k < Dim; ++k) {
-            fat.min[k] = float_below(static_cast<double>(held.min[k]) - skin_);
-            fat.max[k] = float_above(static_cast<double>(held.max[k]) + skin_);
-        }
-        return fat;
-    }
-
-    [[nodiscard]] static bool inside(const Held& box, const Held& fat) noexcept {
-        bool in = true;
-        for (int k = 0; k < Dim; ++k) in &= fat.min[k] <= box.min[k] && box.max[k] <= fat.max[k];
-        return in;
-    }
 
     /// The pipeline's pairs of fat boxes become the candidates; positions follow its new order.
     bool rebuild(const DetectionSettings& settings, DetectStats& stats) {
@@ -199,7 +153,7 @@ private:
         // held_ serves as the fat boxes by slot until the positions are known.
         resize_with_slack(held_, n + 1);  // and one box of padding for overlap_bit()
         for (std::size_t slot = 0; slot < n; ++slot)
-            held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_));
+            held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_), skin_);
         cells_.forget_slots_from(n);
         typename Candidates::Collector collect = candidates_.rebuild(candidate_cap(n));
         try {
@@ -235,6 +189,10 @@ private:
         for (std::size_t p = 0; p < count; ++p) {
             if (p + ahead < count) prefetch_whole(&input_[slot_of_[p + ahead]]);
             held_[p] = held_box<Input, Dim>(input_[slot_of_[p]], origin_);
+        }
+        if (!keys_.empty()) {
+            key_of_.resize(count);
+            for (std::size_t p = 0; p < count; ++p) key_of_[p] = keys_[slot_of_[p]];
         }
     }
 
@@ -285,6 +243,7 @@ private:
         for (std::size_t slot = known; slot < n; ++slot) {
             const auto p = static_cast<Position>(slot_of_.size());
             slot_of_.push_back(static_cast<Slot>(slot));
+            if (!keys_.empty()) key_of_.push_back(keys_[slot]);
             position_of_.push_back(p);
             held_.back() = held_box<Input, Dim>(input_[slot], origin_);
             held_.push_back(Held{});  // the padding
@@ -293,7 +252,7 @@ private:
             fresh_.push_back(p);
         }
         for (const Position p : fresh_) {
-            fat_[p] = fattened(held_[p]);
+            fat_[p] = fattened(held_[p], skin_);
             std::uint8_t& state = state_[p];
             state &= static_cast<std::uint8_t>(~kGone);
             if ((state & kMoved) == 0) moved_.push_back(p);
@@ -337,8 +296,12 @@ private:
                 }
                 continue;
             }
-            if (p + ahead < last && slot_of_[p + ahead] < n) prefetch_whole(&input_[slot_of_[p + ahead]]);
+            if (p + ahead < last && slot_of_[p + ahead] < n) {
+                prefetch_whole(&input_[slot_of_[p + ahead]]);
+                if (!keys_.empty()) prefetch_whole(&keys_[slot_of_[p + ahead]]);
+            }
             const Held held = held_box<Input, Dim>(input_[slot], origin_);
+            if (!keys_.empty()) key_of_[p] = keys_[slot];  // a World's slot may hold another id now
             // Read before held_[p] is written: the two arrays start alike modulo 4 KiB (each its
             // own mapping), so the load after the store would wait on it (4K aliasing).
             const Held fat = fat_[p];
@@ -361,7 +324,7 @@ private:
     void test(Position a, Position b, Report& report) {
         const std::uint32_t bits = overlap_bits<Dim>(&held_[a], &held_[b], sure_margin_);
         if ((bits & 1U) != 0 && confirmed(a, b, (bits & 2U) != 0, retested_))
-            report(BoxId{slot_of_[a]}, BoxId{slot_of_[b]});
+            report(keys_.empty() ? BoxId{slot_of_[a]} : key_of_[a], keys_.empty() ? BoxId{slot_of_[b]} : key_of_[b]);
     }
 
     /// Tests every candidate (candidate_list.hpp), after dropping those of boxes marked in dirty_
@@ -371,9 +334,15 @@ private:
         auto confirm = [this](Position a, Position b, bool sure, std::size_t& retested) {
             return confirmed(a, b, sure, retested);
         };
-        const typename Candidates::template Pass<decltype(confirm)> pass{held_.data(), dirty_.data(), sure_margin_,
-                                                                         slot_of_, confirm};
-        retested_ += candidates_.test(pass, dropping, threads_, report);
+        auto test_named = [&]<class Name>(std::span<const Name> names) {
+            const typename Candidates::template Pass<decltype(confirm), Name> pass{held_.data(), dirty_.data(),
+                                                                                   sure_margin_, names, confirm};
+            retested_ += candidates_.test(pass, dropping, threads_, report);
+        };
+        if (keys_.empty())
+            test_named(std::span<const Slot>(slot_of_));
+        else
+            test_named(std::span<const BoxId>(key_of_));
     }
 
     /// The new candidates of fresh box `p`: the boxes that kept their fat box since the rebuild,
@@ -416,6 +385,8 @@ private:
     std::vector<Held> fat_;              // per position
     std::vector<Held> held_;             // per position: this detection's boxes, held as floats; one more of padding
     std::vector<Slot> slot_of_;          // per position: the caller's index
+    std::span<const BoxId> keys_;        // per slot: the name it is reported under (empty: the slot)
+    std::vector<BoxId> key_of_;          // per position, with keys: keys_[slot_of_[p]]
     std::vector<Position> position_of_;  // per slot ever seen since the rebuild
     std::vector<std::uint8_t> state_;    // per position: kMoved, kFresh, kGone, kDone
     std::vector<Position> moved_;        // positions with kMoved, each once

@@ -90,8 +90,9 @@ RunCommand::RunCommand(CLI::App& parent)
             ->check(CLI::IsMember({"count", "paper"}))
             ->capture_default_str();
     auto* skin = app_->add_option("--skin", skin_,
-                                  "detector only: grow every box by this much on each side and keep the "
-                                  "pairs of grown boxes from step to step (DetectorSettings::skin; 0: off)")
+                                  "grow every box by this much on each side and keep the pairs of grown boxes "
+                                  "from step to step (WorldSettings::skin, DetectorSettings::skin; 0: off; not "
+                                  "with --pipeline paper)")
                      ->check(at_least(0))
                      ->capture_default_str();
     auto* check_every = app_->add_option("--check-every", check_every_,
@@ -117,7 +118,9 @@ RunCommand::RunCommand(CLI::App& parent)
 }
 
 int RunCommand::run() const {
-    if (skin_ > 0 && pipeline_ != "detector") throw CLI::ValidationError("--skin", "needs --pipeline detector");
+    if (skin_ > 0 && pipeline_ == "paper")
+        throw CLI::ValidationError("--skin",
+                                   "needs --pipeline persistent or detector (the paper's lists keep no skin)");
     if (segment_rule_ != "count" && pipeline_ != "paper")
         throw CLI::ValidationError("--segment-rule", "needs --pipeline paper");
 #ifdef SMB_CLI_HAS_MPI
@@ -137,6 +140,7 @@ int RunCommand::run_in() const {
     settings.threads = threads_;
     settings.pipeline = pipeline_ == "paper" ? Pipeline::paper_lists : Pipeline::persistent_cuts;
     settings.segment_rule = segment_rule_ == "paper" ? SegmentRule::twice_largest_box : SegmentRule::from_count;
+    settings.skin = skin_;
     World<double, Dim> world(settings);
     // The detector reads an array in which each body keeps its index (as an array-based
     // simulation's would: smb/workload/swap_remove_mirror.hpp); keeping it up is the update's time. Its pairs

@@ -113,7 +113,7 @@ std::vector<Phase> phases_of(const RunRecord& run) {
         const bool detector = run.pipeline == "detector";
         if (key == "update" && detector) continue;
         if ((key == "scan" || key == "quantile") && paper) continue;
-        if (key == "containment" && !(detector && run.skin > 0)) continue;
+        if (key == "containment" && run.skin == 0) continue;
         if (key == "list_sort" && !paper) continue;
         phases.push_back(phase);
     }

@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The one detection behind every front door: an array of boxes in, its overlapping pairs out.
+// A Detector runs it over the caller's array, a World over its store, a periodic detection
+// over the boxes and their images, a filtered detection over each class of boxes it gathers.
+// It does, once for all of them: check the boxes and find their bounds, choose what to hold
+// (floats where they resolve the scene, held_cut_pipeline.hpp), and detect with the persistent
+// cuts or, given a skin, with the skin list (skin/skin_list.hpp), which steps aside to the cuts
+// for a while when it says it does not pay.
+//
+// The skin is used only where the boxes are held as floats (the skin list holds floats): a
+// scene that floats do not resolve is detected by the cuts on doubles, skin or not.
+
+#include <concepts>
+#include <cstddef>
+#include <span>
+
+#include "core/scene_bounds.hpp"
+#include "core/slot_renumbering.hpp"
+#include "core/stopwatch.hpp"
+#include "cuts/held_cut_pipeline.hpp"
+#include "skin/skin_list.hpp"
+#include "smb/box.hpp"
+#include "smb/held_precision.hpp"
+#include "smb/pair.hpp"
+#include "smb/settings.hpp"
+#include "smb/stats.hpp"
+
+namespace smb::detail {
+
+/// The boxes of one detection, as the front door knows them.
+template <std::floating_point Real, int Dim>
+struct EngineInput {
+    std::span<const Box<Real, Dim>> boxes;
+    /// The name each box is reported under (keys[i] for box i); empty: its index.
+    std::span<const BoxId> keys;
+    /// Not null: the boxes are valid and these are their bounds (the periodic images).
+    const SceneBounds<Real, Dim>* bounds = nullptr;
+    /// The boxes are valid already (a World's store); their bounds are found only where the
+    /// held floats need them.
+    bool valid = false;
+};
+
+template <std::floating_point Real, int Dim>
+class DetectionEngine {
+public:
+    using box_type = Box<Real, Dim>;
+
+    /// Reports every overlapping pair of `input` once, each as report(key_a, key_b) or in runs
+    /// through report.append(). Throws InvalidBoxError (naming the index) before any change
+    /// when a box of unchecked input is invalid. `skin` > 0 lets the skin list detect.
+    template <class Report>
+    void detect(const EngineInput<Real, Dim>& input, const DetectionSettings& settings, double skin, Report& report,
+                DetectStats& stats) {
+        const Stopwatch scan;
+        skin_detected_ = false;
+        if (input.boxes.empty()) {
+            cuts_.detect_nothing(settings, report, stats);
+            skin_.clear();
+            return;
+        }
+        SceneBounds<Real, Dim> bounds;
+        if (input.bounds != nullptr)
+            bounds = *input.bounds;
+        else if (!input.valid || HeldCutPipeline<Real, Dim>::kMayRound)
+            bounds = checked_bounds(input.boxes);  // throws before any change
+        cuts_.judge(input.boxes, bounds);
+        stats.scan_seconds += scan.seconds();
+        skin_detected_ = detected_with_skin(input, bounds, settings, skin, report, stats);
+        if (!skin_detected_) {
+            cuts_.forget_slots_from(input.boxes.size());
+            cuts_.detect(input.boxes, input.keys, bounds, settings, report, stats);
+        }
+    }
+
+    [[nodiscard]] HeldPrecision precision() const noexcept { return cuts_.precision(); }
+    /// Pairs the held floats could not settle, tested again on the input, in the last detection.
+    [[nodiscard]] std::size_t retested() const noexcept { return skin_detected_ ? skin_.retested() : cuts_.retested(); }
+    /// Whether the skin list detected last; its candidates (skin_list()) are then current.
+    [[nodiscard]] bool skin_detected() const noexcept { return skin_detected_; }
+    [[nodiscard]] const SkinList<Real, Dim>& skin_list() const noexcept { return skin_; }
+
+    /// Slots the next detection finds where it left them: a World compacts its store keeping
+    /// these in place (BoxStore::compact()). The skin list finds any box at any slot, and keeps
+    /// its candidates best when the holes are filled from the end.
+    [[nodiscard]] std::size_t listed(std::size_t slot_count) const noexcept {
+        return skin_detected_ ? slot_count : cuts_.listed();
+    }
+    /// A World's store dropped removed slots and renumbered the others.
+    void fold_removals(const SlotRenumbering& renumbering) { cuts_.fold_removals(renumbering); }
+
+    /// Forgets everything: the next detection starts afresh.
+    void clear() {
+        cuts_.clear();
+        skin_.clear();
+        skin_pause_ = 0;
+        skin_detected_ = false;
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept { return cuts_.bytes_held() + skin_.bytes_held(); }
+
+private:
+    /// Detections the cuts make before the skin list is tried again, after it stepped aside.
+    static constexpr std::size_t kSkinPause = 64;
+
+    /// With a skin, on floats (the input's own, or double input that floats resolve): the skin
+    /// list detects, and the cuts give their memory back when it (re)builds. When it steps
+    /// aside (SkinList::detect()), the cuts detect for kSkinPause detections.
+    template <class Report>
+    bool detected_with_skin(const EngineInput<Real, Dim>& input, const SceneBounds<Real, Dim>& bounds,
+                            const DetectionSettings& settings, double skin, Report& report, DetectStats& stats) {
+        if (skin == 0 || cuts_.precision() != HeldPrecision::floats) {
+            skin_.clear();
+            return false;
+        }
+        if (skin_pause_ > 0) {
+            --skin_pause_;
+            return false;
+        }
+        const bool detected =
+            skin_.detect(input.boxes, input.keys, cuts_.origin(), bounds.lo, bounds.hi, skin, settings, report, stats);
+        if (!detected) {
+            skin_pause_ = kSkinPause;
+            return false;
+        }
+        // A (re)build is the first skin detection after the cuts' ones.
+        if (stats.skin_rebuilt) cuts_.release();
+        return true;
+    }
+
+    HeldCutPipeline<Real, Dim> cuts_;
+    SkinList<Real, Dim> skin_;
+    std::size_t skin_pause_ = 0;
+    bool skin_detected_ = false;
+};
+
+}  // namespace smb::detail
