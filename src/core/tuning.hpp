@@ -40,7 +40,7 @@ inline constexpr std::size_t quantile_radix_from = 128;
 /// points may grow into boxes; judging costs a pass over the boxes, one in 64 is noise.
 inline constexpr std::size_t judge_precision_every = 64;
 
-// --- The skin (src/skin/, detector_state.hpp, periodic_path.hpp) -----------------------------
+// --- The skin (src/skin/, src/engine/) -------------------------------------------------------
 
 /// Detections the cuts run after the skin stepped aside (too much motion) before the skin tries
 /// again: a failed retry costs one rebuild, paid at most once in 64 detections.

@@ -18,6 +18,7 @@
 #include "core/scene_bounds.hpp"
 #include "core/slot_renumbering.hpp"
 #include "core/stopwatch.hpp"
+#include "core/tuning.hpp"
 #include "cuts/held_cut_pipeline.hpp"
 #include "skin/skin_list.hpp"
 #include "smb/box.hpp"
@@ -100,12 +101,9 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept { return cuts_.bytes_held() + skin_.bytes_held(); }
 
 private:
-    /// Detections the cuts make before the skin list is tried again, after it stepped aside.
-    static constexpr std::size_t kSkinPause = 64;
-
     /// With a skin, on floats (the input's own, or double input that floats resolve): the skin
     /// list detects, and the cuts give their memory back when it (re)builds. When it steps
-    /// aside (SkinList::detect()), the cuts detect for kSkinPause detections.
+    /// aside (SkinList::detect()), the cuts detect for tuning::skin_pause detections.
     template <class Report>
     bool detected_with_skin(const EngineInput<Real, Dim>& input, const SceneBounds<Real, Dim>& bounds,
                             const DetectionSettings& settings, double skin, Report& report, DetectStats& stats) {
@@ -120,7 +118,7 @@ private:
         const bool detected =
             skin_.detect(input.boxes, input.keys, cuts_.origin(), bounds.lo, bounds.hi, skin, settings, report, stats);
         if (!detected) {
-            skin_pause_ = kSkinPause;
+            skin_pause_ = tuning::skin_pause;
             return false;
         }
         // A (re)build is the first skin detection after the cuts' ones.

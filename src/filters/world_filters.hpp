@@ -26,6 +26,7 @@
 #include "core/pair_output.hpp"
 #include "core/slot_renumbering.hpp"
 #include "core/stopwatch.hpp"
+#include "core/tuning.hpp"
 #include "engine/detection_engine.hpp"
 #include "filters/class_detections.hpp"
 #include "filters/filtered_report.hpp"
@@ -163,7 +164,8 @@ public:
         grow(known_);
         const bool statics_rebuilt = statics_changed_;
         if (statics_changed_) rebuild_statics(store);
-        if (classes_stale_ || (classes_.overflowed() && ++since_classes_ >= kClassesEvery)) rebuild_classes();
+        if (classes_stale_ || (classes_.overflowed() && ++since_classes_ >= tuning::filter_classes_every))
+            rebuild_classes();
         gather(store);
         stats.update_seconds = update.seconds();
         stats.boxes = store.slot_count();
@@ -191,10 +193,6 @@ public:
 
 private:
     static constexpr Slot kNowhere = kNoSlot;
-    /// Detections between two looks at the filter values once they overflowed the classes' table
-    /// (they may have become fewer since).
-    static constexpr std::size_t kClassesEvery = 64;
-
     /// Whether the moving boxes are detected class by class.
     [[nodiscard]] bool split() const noexcept { return classes_.count() > 1; }
 

@@ -15,6 +15,7 @@
 #include "core/id_index.hpp"
 #include "core/ordered_rounds.hpp"
 #include "core/thread_team.hpp"
+#include "core/tuning.hpp"
 #include "skin/held_overlap.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
@@ -30,9 +31,6 @@ public:
         Position a;
         Position b;
     };
-    /// Below this many candidates one thread does the pass alone.
-    static constexpr std::size_t kParallelFrom = std::size_t{1} << 15;
-
     /// Thrown by the collector of a rebuild once the list would pass its cap.
     struct TooManyCandidates {};
     /// Rebuild: collects the pipeline's pairs of fat boxes (slots, turned into positions after).
@@ -113,7 +111,7 @@ public:
         const std::size_t count = candidates_.size();
         workers_.resize(threads);
         std::size_t retested = 0;
-        if (threads == 1 || count < kParallelFrom) {
+        if (threads == 1 || count < tuning::skin_parallel_from) {
             Block& out = serial_;
             out.pairs.clear();
             out.retested = 0;
@@ -144,8 +142,6 @@ public:
     }
 
 private:
-    static constexpr std::size_t kBlockCandidates = std::size_t{1} << 15;
-
     /// The pairs found in one block of candidates, and its counts.
     struct alignas(64) Block {
         std::vector<Pair> pairs;
@@ -164,7 +160,7 @@ private:
     template <class Confirm, class Name, class Report>
     std::size_t test_in_rounds(const Pass<Confirm, Name>& pass, bool dropping, int threads, Report& report) {
         const std::size_t count = candidates_.size();
-        const std::size_t blocks = (count + kBlockCandidates - 1) / kBlockCandidates;
+        const std::size_t blocks = (count + tuning::skin_block_candidates - 1) / tuning::skin_block_candidates;
         const std::size_t round = 4 * static_cast<std::size_t>(threads);
         std::size_t retested = 0;
         run_in_ordered_rounds(
@@ -173,9 +169,9 @@ private:
                 block.pairs.clear();
                 block.retested = 0;
                 block.tombstones = 0;
-                const std::size_t first = item * kBlockCandidates;
-                test_range(pass, first, std::min(first + kBlockCandidates, count), dropping, workers_.mine(), block,
-                           [] {});
+                const std::size_t first = item * tuning::skin_block_candidates;
+                test_range(pass, first, std::min(first + tuning::skin_block_candidates, count), dropping,
+                           workers_.mine(), block, [] {});
             },
             [&](std::size_t, Block& block) {
                 retested += block.retested;

@@ -6,13 +6,12 @@
 
 #include <cstddef>
 
+#include "core/tuning.hpp"
+
 namespace smb::detail {
 
 class CandidateLives {
 public:
-    /// Fewer detections than this between two rebuilds make a short life.
-    static constexpr std::size_t kShortLife = 4;
-
     /// Counts a detection that rebuilt the candidates, or kept them; true at the end of the second
     /// short life running.
     [[nodiscard]] bool short_again(bool rebuilt) noexcept {
@@ -20,7 +19,7 @@ public:
             ++kept_since_rebuild_;
             return false;
         }
-        if (kept_since_rebuild_ >= kShortLife) {
+        if (kept_since_rebuild_ >= tuning::short_skin_life) {
             short_lives_ = 0;
         } else if (++short_lives_ >= 2) {
             return true;
@@ -30,8 +29,8 @@ public:
     }
 
 private:
-    std::size_t kept_since_rebuild_ = kShortLife;  // the first build ends no life
-    std::size_t short_lives_ = 0;                  // running
+    std::size_t kept_since_rebuild_ = tuning::short_skin_life;  // the first build ends no life
+    std::size_t short_lives_ = 0;                               // running
 };
 
 }  // namespace smb::detail

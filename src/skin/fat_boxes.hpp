@@ -11,6 +11,7 @@
 
 #include "core/held_box.hpp"
 #include "core/id_index.hpp"
+#include "core/tuning.hpp"
 #include "smb/box.hpp"
 
 namespace smb::detail {
@@ -22,9 +23,13 @@ inline constexpr std::uint8_t kGone = 4;   // its slot is past the caller's arra
 inline constexpr std::uint8_t kDone = 8;   // fresh, and its new candidates are found already
 
 /// The most candidates the skin list holds for `n` boxes before it steps aside.
-[[nodiscard]] inline std::size_t candidate_cap(std::size_t n) noexcept { return 32 * n + (std::size_t{1} << 20); }
+[[nodiscard]] inline std::size_t candidate_cap(std::size_t n) noexcept {
+    return tuning::skin_candidates_per_box * n + (std::size_t{1} << 20);
+}
 /// The moved list is tested against every fresh box: past this length a rebuild is cheaper.
-[[nodiscard]] inline std::size_t moved_limit(std::size_t n) noexcept { return std::max<std::size_t>(64, n / 64); }
+[[nodiscard]] inline std::size_t moved_limit(std::size_t n) noexcept {
+    return std::max(tuning::moved_limit_floor, n / tuning::moved_limit_divisor);
+}
 
 /// `held` grown by `skin` on every side, rounded outward to floats.
 template <int Dim>
