@@ -36,6 +36,10 @@ namespace smb::detail {
 /// The filtered detection is live; its state is the World's filters' (counted with them).
 template <std::floating_point Real, int Dim>
 struct FilteredPath {
+    // A constructor, not an aggregate: clang before 16 cannot build an aggregate from parentheses,
+    // which std::variant::emplace does.
+    explicit FilteredPath(const WorldFilters<Real, Dim>* held) noexcept : filters(held) {}
+
     const WorldFilters<Real, Dim>* filters;
 
     [[nodiscard]] HeldPrecision precision() const noexcept { return filters->precision(); }
