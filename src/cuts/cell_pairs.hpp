@@ -317,7 +317,9 @@ private:
         std::uint32_t* bucket = bucket_.data();
         std::uint32_t* count = bucket_count_.data();
         for (std::size_t i = 0; i < m; ++i) {
-            bucket[i] = static_cast<std::uint32_t>(std::min((xs[i] - lo) * scale, last_bucket));
+            // With scale 0 the difference may itself overflow to infinity, and infinity * 0 is NaN.
+            const float position = scale > 0 ? (xs[i] - lo) * scale : 0.0F;
+            bucket[i] = static_cast<std::uint32_t>(std::min(position, last_bucket));
             ++count[bucket[i] + 1];
         }
         for (std::size_t b = 0; b < buckets; ++b) count[b + 1] += count[b];
