@@ -309,9 +309,12 @@ private:
         // Rounded float arithmetic is monotone too. A width beyond the float range puts every
         // box in one bucket (the bound then sorts them outright).
         const float width = hi - lo;
-        const float scale = width > 0 && width < std::numeric_limits<float>::infinity()
-                                ? static_cast<float>(static_cast<double>(buckets) / static_cast<double>(width))
-                                : 0.0F;
+        // So does a subnormal width, whose scale would overflow float (and 0 * infinity is NaN).
+        const double raw_scale = width > 0 && width < std::numeric_limits<float>::infinity()
+                                     ? static_cast<double>(buckets) / static_cast<double>(width)
+                                     : 0.0;
+        const float scale =
+            raw_scale < static_cast<double>(std::numeric_limits<float>::max()) ? static_cast<float>(raw_scale) : 0.0F;
         const auto last_bucket = static_cast<float>(buckets - 1);
         bucket_count_.assign(buckets + 1, 0U);
         std::uint32_t* bucket = bucket_.data();
