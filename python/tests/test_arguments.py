@@ -103,14 +103,14 @@ def test_the_namespace_is_the_public_names():
     assert "annotations" not in dir(smb) and "math" not in dir(smb)
 
 
-def documented(owner):
-    """(name, object) for `owner` and each of its public members that Python lets us document."""
-    yield owner.__name__, owner
-    if inspect.isclass(owner):
-        for name, member in vars(owner).items():
+def documented(holder):
+    """(name, object) for `holder` and each of its public members that Python lets us document."""
+    yield holder.__name__, holder
+    if inspect.isclass(holder):
+        for name, member in vars(holder).items():
             if not name.startswith("_") or name in ("__init__", "__contains__", "__len__"):
                 if callable(member) or isinstance(member, property):
-                    yield f"{owner.__name__}.{name}", member
+                    yield f"{holder.__name__}.{name}", member
 
 
 def test_every_public_name_has_a_docstring():
