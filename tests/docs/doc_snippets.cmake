@@ -21,7 +21,7 @@ foreach(page ${PROJECT_SOURCE_DIR}/README.md ${smb_doc_pages})
   set(out ${CMAKE_CURRENT_BINARY_DIR}/doc_snippets/${name}.cpp)
   add_custom_command(OUTPUT ${out}
     COMMAND ${SMB_SNIPPET_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/extract_snippets.py ${page} ${out}
-    DEPENDS ${page} ${CMAKE_CURRENT_LIST_DIR}/extract_snippets.py
+    DEPENDS ${page} ${CMAKE_CURRENT_LIST_DIR}/extract_snippets.py ${CMAKE_CURRENT_LIST_DIR}/markdown_blocks.py
     COMMENT "Extracting the C++ snippets of ${relative}"
     VERBATIM)
   list(APPEND smb_snippet_sources ${out})

@@ -14,19 +14,7 @@ import os
 import re
 import sys
 
-
-def blocks(text):
-    """(first line number, lines) of every ```cpp block."""
-    found, current, start = [], None, 0
-    for number, line in enumerate(text.splitlines(), 1):
-        if current is None and line.strip() == "```cpp":
-            current, start = [], number + 1
-        elif current is not None and line.strip() == "```":
-            found.append((start, current))
-            current = None
-        elif current is not None:
-            current.append(line)
-    return found
+from markdown_blocks import fenced_blocks
 
 
 def guard(lines):
@@ -44,7 +32,7 @@ def main():
         text = f.read()
     includes = ['#include "doc_snippet_context.hpp"']
     bodies = []
-    for index, (start, lines) in enumerate(blocks(text)):
+    for index, (start, _, lines) in enumerate(fenced_blocks(text, ["cpp"])):
         body = []
         for line in lines:
             if re.match(r"\s*#include\s", line):
