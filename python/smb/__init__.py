@@ -19,6 +19,7 @@ import math as _math
 import numpy as _np
 
 from . import _arguments
+from . import _readout
 from . import _smb
 from ._box_index import BoxIndex
 from ._pair_events import PairEvents
@@ -102,25 +103,19 @@ def find_overlapping_pairs(boxes, b_boxes=None, *, threads=1,
 class _Readouts:
     """What Detector and World both tell of their last detection and of themselves."""
 
-    @property
-    def stats(self):
-        """What the last detection did and cost: a dict of counts and seconds."""
-        return self._impl.stats
+    stats = _readout.forwarded("stats", "What the last detection did and cost: a dict of counts and seconds.")
 
-    @property
-    def precision(self):
-        """What the last detection held: 'none', 'floats' or 'doubles'."""
-        return self._impl.precision
+    precision = _readout.forwarded(
+        "precision", "What the last detection held: 'none', 'floats' or 'doubles'."
+    )
 
-    @property
-    def bytes_held(self):
-        """Heap bytes the object holds (a Detector's caller's array not counted)."""
-        return self._impl.bytes_held
+    bytes_held = _readout.forwarded(
+        "bytes_held", "Heap bytes the object holds (a Detector's caller's array not counted)."
+    )
 
-    @property
-    def threads(self):
-        """OpenMP threads a detection may use (0: all cores), as constructed."""
-        return self._impl.threads
+    threads = _readout.forwarded(
+        "threads", "OpenMP threads a detection may use (0: all cores), as constructed."
+    )
 
 
 class Detector(_Readouts):
@@ -182,15 +177,13 @@ class Detector(_Readouts):
         """
         return self._impl.detect_periodic(boxes, lo, hi, axes, bool(sort))
 
-    @property
-    def begun(self):
-        """Pairs of the last detection that were not in the one before, sorted ((P, 2) int64)."""
-        return self._impl.begun
+    begun = _readout.forwarded(
+        "begun", "Pairs of the last detection that were not in the one before, sorted ((P, 2) int64)."
+    )
 
-    @property
-    def ended(self):
-        """Pairs of the detection before the last that are not in the last one, sorted."""
-        return self._impl.ended
+    ended = _readout.forwarded(
+        "ended", "Pairs of the detection before the last that are not in the last one, sorted."
+    )
 
     def swap_remove(self, removed, last):
         """Tells the events that body `last` moved to index `removed`, whose body is gone: its
@@ -210,10 +203,9 @@ class Detector(_Readouts):
         """Forgets the cuts and the order and releases their memory; keeps the settings."""
         self._impl.clear()
 
-    @property
-    def skin(self):
-        """How much each box is grown for the candidate list kept between calls (0: none)."""
-        return self._impl.skin
+    skin = _readout.forwarded(
+        "skin", "How much each box is grown for the candidate list kept between calls (0: none)."
+    )
 
     def __repr__(self):
         return f"smb.Detector(dim={self.dim}, dtype={self.dtype.name}, skin={self.skin})"
@@ -290,15 +282,13 @@ class World(_Readouts):
         """
         return self._impl.detect_periodic(lo, hi, axes, bool(sort))
 
-    @property
-    def begun(self):
-        """Pairs of the last detection that were not in the one before, sorted ((P, 2) uint64)."""
-        return self._impl.begun
+    begun = _readout.forwarded(
+        "begun", "Pairs of the last detection that were not in the one before, sorted ((P, 2) uint64)."
+    )
 
-    @property
-    def ended(self):
-        """Pairs of the detection before the last that are not in the last one, sorted."""
-        return self._impl.ended
+    ended = _readout.forwarded(
+        "ended", "Pairs of the detection before the last that are not in the last one, sorted."
+    )
 
     def set_filter(self, ids, categories=None, masks=None):
         """Sets the collision filters of `ids` (one value or one per id; None: the default,

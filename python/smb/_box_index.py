@@ -6,6 +6,7 @@ import math
 import numpy as np
 
 from . import _arguments
+from . import _readout
 
 
 def _box_shape(boxes):
@@ -63,10 +64,7 @@ class BoxIndex:
         """The number of boxes indexed."""
         return self._impl.size()
 
-    @property
-    def bytes_held(self):
-        """Heap bytes the index holds."""
-        return self._impl.bytes_held
+    bytes_held = _readout.forwarded("bytes_held", "Heap bytes the index holds.")
 
     def __repr__(self):
         return f"smb.BoxIndex(dim={self.dim}, dtype={self.dtype.name}, size={len(self)})"

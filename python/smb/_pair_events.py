@@ -2,6 +2,7 @@
 """smb.PairEvents: the pairs that began and ended overlapping between two lists of pairs."""
 
 from . import _arguments
+from . import _readout
 from . import _smb
 
 
@@ -41,29 +42,23 @@ class PairEvents:
         """Forgets the previous list and the calls since; the next update reports every pair."""
         self._impl.clear()
 
-    @property
-    def begun(self):
-        """Pairs of the last update's list that were not in the one before, sorted."""
-        return self._impl.begun
+    begun = _readout.forwarded(
+        "begun", "Pairs of the last update's list that were not in the one before, sorted."
+    )
 
-    @property
-    def ended(self):
-        """Pairs of the list before the last update that are not in it, sorted."""
-        return self._impl.ended
+    ended = _readout.forwarded(
+        "ended", "Pairs of the list before the last update that are not in it, sorted."
+    )
 
     def __len__(self):
         """Pairs in the last update's list."""
         return self._impl.size()
 
-    @property
-    def threads(self):
-        """OpenMP threads an update may use (0: all cores), as constructed."""
-        return self._impl.threads
+    threads = _readout.forwarded(
+        "threads", "OpenMP threads an update may use (0: all cores), as constructed."
+    )
 
-    @property
-    def bytes_held(self):
-        """Heap bytes held now."""
-        return self._impl.bytes_held
+    bytes_held = _readout.forwarded("bytes_held", "Heap bytes held now.")
 
     def __repr__(self):
         return f"smb.PairEvents(threads={self.threads}, size={len(self)})"
