@@ -46,3 +46,13 @@ endif()
 # changed since.
 add_test(NAME doc_snippets_compile COMMAND ${CMAKE_COMMAND} --build ${CMAKE_BINARY_DIR} --target smb_doc_snippets)
 set_tests_properties(doc_snippets_compile PROPERTIES LABELS docs TIMEOUT 600)
+
+# The shell snippets: each smb command run on a tiny scene in a scratch folder, each script,
+# binary, option, target and CMake option they name checked against the project (a block marked
+# <!-- not run: reason --> passes over the commands the check does not know).
+if(TARGET smb_cli)
+  add_test(NAME doc_snippets_shell
+    COMMAND ${SMB_SNIPPET_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check_shell_snippets.py --smb $<TARGET_FILE:smb_cli>
+      --source-dir ${PROJECT_SOURCE_DIR} --build-dir ${CMAKE_BINARY_DIR})
+  set_tests_properties(doc_snippets_shell PROPERTIES LABELS docs TIMEOUT 120)
+endif()
