@@ -149,6 +149,23 @@ void fill(Random& random, World& world, Scene<World>& scene, std::vector<BoxId>&
     }
 }
 
+/// A world holding `count` boxes under wide ids in a cube of `side`, what it should hold, and the
+/// ids spare for arrivals; churn() changes both as a step of a test does.
+template <class World>
+struct WideWorld {
+    WideWorld(std::uint64_t seed, double cube_side, std::size_t count, std::size_t id_count)
+        : random(seed), side(cube_side), spare(wide_ids(random, id_count)) {
+        fill(random, world, scene, spare, count, side);
+    }
+    void churn() { smb::test::churn(random, world, scene, spare, side); }
+
+    Random random;
+    double side;
+    std::vector<BoxId> spare;
+    World world;
+    Scene<World> scene;
+};
+
 template <class T>
 class WideIdsTest : public ::testing::Test {};
 
@@ -157,18 +174,13 @@ TYPED_TEST_SUITE(WideIdsTest, WideIdWorlds);
 
 TYPED_TEST(WideIdsTest, PairsAndEventsOverManySteps) {
     using World = TypeParam;
-    Random random(35001);
-    const double side = 14;
-    std::vector<BoxId> spare = wide_ids(random, 160);
-    World world;
-    Scene<World> scene;
-    fill(random, world, scene, spare, 120, side);
+    WideWorld<World> wide(35001, 14, 120, 160);
     PairEvents events;
     std::vector<Pair> before;
     std::vector<Pair> pairs;
     for (int step = 0; step < 40; ++step) {
-        world.detect(pairs, events);
-        const std::vector<Pair> expected = scene.pairs(false);
+        wide.world.detect(pairs, events);
+        const std::vector<Pair> expected = wide.scene.pairs(false);
         ASSERT_TRUE(same_pairs(pairs, expected)) << "step " << step;
         // Events from the pairs before: every pair begun is present, every pair ended was, and
         // the pairs before less the ended plus the begun are the pairs now (a box removed and
@@ -187,8 +199,8 @@ TYPED_TEST(WideIdsTest, PairsAndEventsOverManySteps) {
         ASSERT_TRUE(std::adjacent_find(begun.begin(), begun.end()) == begun.end()) << step;
         ASSERT_TRUE(std::adjacent_find(ended.begin(), ended.end()) == ended.end()) << step;
         before = expected;
-        for (const BoxId id : scene.ids()) ASSERT_TRUE(world.contains(id));
-        churn(random, world, scene, spare, side);
+        for (const BoxId id : wide.scene.ids()) ASSERT_TRUE(wide.world.contains(id));
+        wide.churn();
     }
 }
 
@@ -196,25 +208,20 @@ TYPED_TEST(WideIdsTest, PeriodicPairsOverManySteps) {
     using World = TypeParam;
     using Real = typename World::real_type;
     constexpr int Dim = World::dimension;
-    Random random(35002);
-    const double side = 12;
-    const auto domain = cube_domain<Real, Dim>(side, (1u << Dim) - 1);
-    std::vector<BoxId> spare = wide_ids(random, 150);
-    World world;
-    Scene<World> scene;
-    fill(random, world, scene, spare, 110, side);
+    WideWorld<World> wide(35002, 12, 110, 150);
+    const auto domain = cube_domain<Real, Dim>(wide.side, (1u << Dim) - 1);
     std::vector<PeriodicPair> pairs;
     PairEvents events;
     for (int step = 0; step < 40; ++step) {
         if (step % 2 == 0)
-            world.detect(domain, pairs);
+            wide.world.detect(domain, pairs);
         else
-            world.detect(domain, pairs, events);
-        const std::vector<BoxId> ids = scene.ids();
-        const auto boxes = scene.box_list();
+            wide.world.detect(domain, pairs, events);
+        const std::vector<BoxId> ids = wide.scene.ids();
+        const auto boxes = wide.scene.box_list();
         ASSERT_TRUE(same_periodic_pairs(pairs, brute_force_periodic_pairs<Real, Dim>(boxes, ids, domain)))
             << "step " << step;
-        churn(random, world, scene, spare, side);
+        wide.churn();
     }
 }
 
@@ -249,40 +256,36 @@ TYPED_TEST(WideIdsTest, TheIssuesThreeBoxes) {
 
 TYPED_TEST(WideIdsTest, FiltersStaticsAndPredicateOverManySteps) {
     using World = TypeParam;
-    Random random(35003);
-    const double side = 14;
-    std::vector<BoxId> spare = wide_ids(random, 160);
-    World world;
-    Scene<World> scene;
-    fill(random, world, scene, spare, 120, side);
-    world.set_pair_predicate(&Scene<World>::keep);
+    WideWorld<World> wide(35003, 14, 120, 160);
+    wide.world.set_pair_predicate(&Scene<World>::keep);
     std::vector<Pair> pairs;
     for (int step = 0; step < 40; ++step) {
         // Filters and static flags of a few boxes, one at a time and by span.
         std::vector<BoxId> ids;
         std::vector<Filter> filters;
-        for (const BoxId id : scene.ids()) {
-            if (!chance(random, 0.1)) continue;
-            const Filter f{static_cast<std::uint32_t>(1 + uniform_index(random, 3)),
-                           static_cast<std::uint32_t>(uniform_index(random, 8))};
+        for (const BoxId id : wide.scene.ids()) {
+            if (!chance(wide.random, 0.1)) continue;
+            const Filter f{static_cast<std::uint32_t>(1 + uniform_index(wide.random, 3)),
+                           static_cast<std::uint32_t>(uniform_index(wide.random, 8))};
             ids.push_back(id);
             filters.push_back(f);
-            scene.filters[id] = f;
-            if (chance(random, 0.3)) {
-                const bool is_static = !scene.statics.contains(id);
-                world.set_static(id, is_static);
+            wide.scene.filters[id] = f;
+            if (chance(wide.random, 0.3)) {
+                const bool is_static = !wide.scene.statics.contains(id);
+                wide.world.set_static(id, is_static);
                 if (is_static)
-                    scene.statics.insert(id);
+                    wide.scene.statics.insert(id);
                 else
-                    scene.statics.erase(id);
+                    wide.scene.statics.erase(id);
             }
         }
-        world.set_filter(ids, filters);
-        for (const BoxId id : ids) ASSERT_EQ(world.filter(id), scene.filter(id));
-        for (const BoxId id : scene.ids()) ASSERT_EQ(world.is_static(id), scene.statics.contains(id)) << id;
-        world.detect(pairs);
-        ASSERT_TRUE(same_pairs(pairs, scene.pairs(true))) << "step " << step;
-        churn(random, world, scene, spare, side);
+        wide.world.set_filter(ids, filters);
+        for (const BoxId id : ids) ASSERT_EQ(wide.world.filter(id), wide.scene.filter(id));
+        for (const BoxId id : wide.scene.ids())
+            ASSERT_EQ(wide.world.is_static(id), wide.scene.statics.contains(id)) << id;
+        wide.world.detect(pairs);
+        ASSERT_TRUE(same_pairs(pairs, wide.scene.pairs(true))) << "step " << step;
+        wide.churn();
     }
 }
 
@@ -290,23 +293,18 @@ TYPED_TEST(WideIdsTest, QueriesAndRaysOverManySteps) {
     using World = TypeParam;
     using Real = typename World::real_type;
     constexpr int Dim = World::dimension;
-    Random random(35004);
-    const double side = 14;
-    std::vector<BoxId> spare = wide_ids(random, 160);
-    World world;
-    Scene<World> scene;
-    fill(random, world, scene, spare, 120, side);
+    WideWorld<World> wide(35004, 14, 120, 160);
     std::vector<BoxId> found;
     std::vector<QueryHit> hits;
     std::vector<RayHit<Real>> ray_hits;
     for (int step = 0; step < 30; ++step) {
         std::vector<typename World::box_type> queries;
-        for (int q = 0; q < 4; ++q) queries.push_back(particle_box<Real, Dim>(random, side, 0.5, 5));
+        for (int q = 0; q < 4; ++q) queries.push_back(particle_box<Real, Dim>(wide.random, wide.side, 0.5, 5));
         std::vector<QueryHit> expected_hits;
         for (std::size_t q = 0; q < queries.size(); ++q) {
-            world.query(queries[q], found);
+            wide.world.query(queries[q], found);
             std::vector<BoxId> expected;
-            for (const auto& [id, box] : scene.boxes) {
+            for (const auto& [id, box] : wide.scene.boxes) {
                 if (overlaps(box, queries[q])) {
                     expected.push_back(id);
                     expected_hits.push_back(QueryHit{q, id});
@@ -315,25 +313,25 @@ TYPED_TEST(WideIdsTest, QueriesAndRaysOverManySteps) {
             std::sort(found.begin(), found.end());
             ASSERT_EQ(found, expected) << "step " << step;
         }
-        world.query(queries, hits);
+        wide.world.query(queries, hits);
         std::sort(hits.begin(), hits.end());
         ASSERT_EQ(hits, expected_hits) << "step " << step;
 
         Ray<Real, Dim> ray;
         for (int k = 0; k < Dim; ++k) {
-            ray.origin[k] = static_cast<Real>(uniform(random, -1, side + 1));
-            ray.direction[k] = static_cast<Real>(uniform(random, -1, 1));
+            ray.origin[k] = static_cast<Real>(uniform(wide.random, -1, wide.side + 1));
+            ray.direction[k] = static_cast<Real>(uniform(wide.random, -1, 1));
         }
-        world.cast_ray(ray, RayHits::all, ray_hits);
+        wide.world.cast_ray(ray, RayHits::all, ray_hits);
         std::vector<BoxId> entered;
-        for (const auto& [id, box] : scene.boxes) {
+        for (const auto& [id, box] : wide.scene.boxes) {
             if (ray_entry(ray, box)) entered.push_back(id);
         }
         std::vector<BoxId> hit_ids;
         for (const auto& h : ray_hits) hit_ids.push_back(h.id);
         std::sort(hit_ids.begin(), hit_ids.end());
         ASSERT_EQ(hit_ids, entered) << "step " << step;
-        churn(random, world, scene, spare, side);
+        wide.churn();
     }
 }
 
