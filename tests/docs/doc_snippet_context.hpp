@@ -26,17 +26,9 @@ extern smb::Detector3d detector;
 extern smb::PairEvents events;
 extern std::vector<smb::Pair> pairs;
 extern std::vector<smb::PeriodicPair> periodic;
-extern std::vector<smb::Box3d> boxes;
-extern std::vector<smb::Box3d> my_boxes;
-extern std::vector<smb::Box3d> my_moved_boxes;
-extern std::vector<smb::Box3d> particles;
-extern std::vector<smb::Box3d> triangles;
-extern std::vector<smb::BoxId> ids;
-extern std::vector<smb::BoxId> my_ids;
-extern std::vector<smb::BoxId> terrain_ids;
-extern std::vector<smb::BoxId> debris;
-extern std::vector<smb::BoxId> a_ids;
-extern std::vector<smb::BoxId> b_ids;
+// Grouped by type: one declaration names a group.
+extern std::vector<smb::Box3d> boxes, my_boxes, my_moved_boxes, particles, triangles;
+extern std::vector<smb::BoxId> ids, my_ids, terrain_ids, debris, a_ids, b_ids;
 extern smb::BoxId debris_id;
 extern smb::Box3d box;
 extern std::vector<smb::Filter> body_filters;
@@ -51,12 +43,10 @@ extern int steps;
 // A program's own functions.
 std::vector<smb::Box3d> load_boxes();
 void move_bodies(std::vector<smb::Box3d>& boxes);
-void begin_contact(smb::BoxId a, smb::BoxId b);
-void end_contact(smb::BoxId a, smb::BoxId b);
-void on_contact_begin(smb::BoxId a, smb::BoxId b);
-void on_contact_end(smb::BoxId a, smb::BoxId b);
-bool same_body(smb::BoxId a, smb::BoxId b);
-bool same_ragdoll(smb::BoxId a, smb::BoxId b);
+using PairCallback = void(smb::BoxId a, smb::BoxId b);
+using PairTest = bool(smb::BoxId a, smb::BoxId b);
+PairCallback begin_contact, end_contact, on_contact_begin, on_contact_end;
+PairTest same_body, same_ragdoll;
 
 #if SMB_SNIPPETS_BULLET
 // A Bullet program's parts, beside the broad phase it switches.
