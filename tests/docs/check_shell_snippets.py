@@ -11,8 +11,7 @@ benchmarks of many minutes, MPI runs), so each command is checked for what can d
   takes: the argparse options of a Python script, the text of a shell script or of the Python
   script it passes its options on to ("[more options of NAME.py]" in its usage line);
 - a binary of ours (build*/bench/smb_x, build*/examples/dem/smb_dem) is a target of the project
-  built where the path says, and each option given is in its --help where this build has it,
-  else in its sources;
+  built where the path says, and each option given is named in its sources (read, not run);
 - cmake: every --target is a target of the project, every -DSMB_... an option of it;
   ctest and pytest: the folders named exist; `python3 -c` runs against the built module.
 
@@ -335,7 +334,7 @@ def main():
     parser.add_argument("--smb", required=True, help="the built smb tool")
     parser.add_argument("--source-dir", required=True)
     parser.add_argument("--build-dir", required=True)
-    parser.add_argument("--verbose", action="store_true", help="print every command and what was checked")
+    parser.add_argument("--verbose", action="store_true", help="print every command as it is checked")
     arguments = parser.parse_args()
     source = os.path.abspath(arguments.source_dir)
     checker = Checker(os.path.abspath(arguments.smb), source, os.path.abspath(arguments.build_dir))
@@ -362,7 +361,7 @@ def main():
                         else:
                             checker.fail(where, "a command this check does not know: check it here, or mark "
                                          "the block <!-- not run: reason --> on the line above its fence")
-    for note in checker.notes if arguments.verbose else []:
+    for note in checker.notes:
         print("note:", note)
     summary = ", ".join(f"{count} {kind}" for kind, count in sorted(checker.counts.items()))
     print(f"{blocks} shell blocks: {summary}; {passed_over} passed over in blocks marked not run, "
