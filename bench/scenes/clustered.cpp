@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "scenes/around_centres.hpp"
 #include "scenes/moving_boxes.hpp"
 
 namespace smb::bench {
@@ -31,24 +32,14 @@ std::unique_ptr<Scene<Dim>> make_clustered_scene(const SceneSpec& spec) {
     const double spread =
         std::pow(per_cluster * mean_volume / (core_density * std::pow(2 * std::numbers::pi, 0.5 * Dim)), 1.0 / Dim);
 
-    std::mt19937_64 layout_rng(spec.seed ^ 0x5eedc1u);
-    std::uniform_real_distribution<double> anywhere(0.0, cube_side);
-    std::vector<std::array<double, Dim>> centres(cluster_count);
-    for (auto& centre : centres)
-        for (int k = 0; k < Dim; ++k) centre[k] = anywhere(layout_rng);
-
-    auto place = [centres, spread](std::mt19937_64& rng) {
-        std::uniform_int_distribution<std::size_t> which(0, centres.size() - 1);
+    const auto centres = random_centres<Dim>(cluster_count, 0.0, cube_side, spec.seed ^ 0x5eedc1u);
+    auto gaussian = [spread](std::mt19937_64& rng, const std::array<double, Dim>& centre) {
         std::normal_distribution<double> offset(0.0, spread);
-        std::uniform_real_distribution<double> side(smallest_side, largest_side);
-        PlacedBox<Dim> box;
-        const auto& centre = centres[which(rng)];
-        for (int k = 0; k < Dim; ++k) box.centre[k] = centre[k] + offset(rng);
-        for (int k = 0; k < Dim; ++k) box.sides[k] = side(rng);
-        box.side_min = smallest_side;
-        box.side_max = largest_side;
-        return box;
+        std::array<double, Dim> at{};
+        for (int k = 0; k < Dim; ++k) at[k] = centre[k] + offset(rng);
+        return at;
     };
+    auto place = placed_around<Dim>(centres, smallest_side, largest_side, gaussian);
     return std::make_unique<MovingBoxes<Dim>>(spec.boxes, cube_side, largest_side, spec.update_factor, spec.seed,
                                               place);
 }

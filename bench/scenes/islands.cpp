@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "scenes/around_centres.hpp"
 #include "scenes/moving_boxes.hpp"
 
 namespace smb::bench {
@@ -30,33 +31,23 @@ std::unique_ptr<Scene<Dim>> make_islands_scene(const SceneSpec& spec) {
     const double island_volume = n / island_count * volume_moment / island_density;
     const double radius = std::pow(island_volume / unit_ball, 1.0 / Dim);
 
-    std::mt19937_64 layout_rng(spec.seed ^ 0x15a1du);
-    std::uniform_real_distribution<double> anywhere(radius, std::max(radius, cube_side - radius));
-    std::vector<std::array<double, Dim>> centres(island_count);
-    for (auto& centre : centres)
-        for (int k = 0; k < Dim; ++k) centre[k] = anywhere(layout_rng);
-
-    auto place = [centres, radius](std::mt19937_64& rng) {
-        std::uniform_int_distribution<std::size_t> which(0, centres.size() - 1);
+    const auto centres =
+        random_centres<Dim>(island_count, radius, std::max(radius, cube_side - radius), spec.seed ^ 0x15a1du);
+    // Uniform in the ball: points of the enclosing cube, the ones outside drawn again.
+    auto in_ball = [radius](std::mt19937_64& rng, const std::array<double, Dim>& centre) {
         std::uniform_real_distribution<double> offset(-radius, radius);
-        std::uniform_real_distribution<double> side(smallest_side, largest_side);
-        PlacedBox<Dim> box;
-        const auto& centre = centres[which(rng)];
-        // Uniform in the ball: points of the enclosing cube, the ones outside drawn again.
+        std::array<double, Dim> at{};
         for (;;) {
             double distance = 0;
             for (int k = 0; k < Dim; ++k) {
                 const double along = offset(rng);
-                box.centre[k] = centre[k] + along;
+                at[k] = centre[k] + along;
                 distance += along * along;
             }
-            if (distance <= radius * radius) break;
+            if (distance <= radius * radius) return at;
         }
-        for (int k = 0; k < Dim; ++k) box.sides[k] = side(rng);
-        box.side_min = smallest_side;
-        box.side_max = largest_side;
-        return box;
     };
+    auto place = placed_around<Dim>(centres, smallest_side, largest_side, in_ball);
     return std::make_unique<MovingBoxes<Dim>>(spec.boxes, cube_side, largest_side, spec.update_factor, spec.seed,
                                               place);
 }
