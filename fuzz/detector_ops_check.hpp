@@ -154,7 +154,7 @@ private:
 }  // namespace detector_ops_detail
 
 /// Decodes `data` into a detector type, settings (as world operations; one thread: OpenMP's idle
-/// threads spin between inputs and slow the fuzzer tenfold, and tests/test_detector.cpp checks
+/// threads spin between inputs and slow the fuzzer tenfold, and tests/api/test_detector.cpp checks
 /// thread counts against brute force) and changes to its array, and checks every detection;
 /// throws std::logic_error at the first broken promise of smb.
 inline void check_detector_operations(const std::uint8_t* data, std::size_t size) {

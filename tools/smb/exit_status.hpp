@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The exit statuses of smb, in one place: main() returns them, `smb --help` and
-// tools/smb/README.md state them (tests/test_cli_arguments.cpp holds the three to one another).
+// tools/smb/README.md state them (tests/tool/test_cli_arguments.cpp holds the three to one another).
 
 namespace smb::cli::exit_status {
 

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "test_cli_support.hpp"
+#include "tool/test_cli_support.hpp"
 
 namespace smb::cli_test {
 namespace {

@@ -343,7 +343,7 @@ TYPED_TEST(DetectorSkinTest, RejectsAnInvalidBoxByIndexAndStaysAsItWas) {
     EXPECT_EQ(after, before);
 }
 
-// A World has no skin to refuse: WorldSettings has none (tests/test_settings.cpp).
+// A World has no skin to refuse: WorldSettings has none (tests/api/test_settings.cpp).
 TEST(DetectorSkinSettings, RefusesANegativeOrNonFiniteSkin) {
     for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
         DetectorSettings settings;

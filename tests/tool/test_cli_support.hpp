@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // Running the built `smb` binary from end-to-end tests. SMB_CLI_PATH and SMB_CLI_DATA_DIR come
-// from tests/cli.cmake.
+// from tests/tool/CMakeLists.txt.
 
 #include <sys/wait.h>
 
