@@ -3,7 +3,7 @@
 // random scenes (motion across the boundary, boxes drifting away, teleports, growing and
 // shrinking arrays), one and two threads, with and without the skin; no periodic axis; a pair
 // that crosses the boundary staying one contact for the events. The fixed scenes at the boundary
-// and rejected input are in tests/test_periodic_detector_edges.cpp.
+// and rejected input are in tests/api/test_periodic_detector_edges.cpp.
 
 #include <gtest/gtest.h>
 

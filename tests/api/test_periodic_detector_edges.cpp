@@ -2,7 +2,7 @@
 // Detector's periodic detection at the edges of the domain, against the brute force over the 3^D
 // images: boxes touching across the boundary, at lo and just below hi, far outside the domain,
 // translated by whole periods; a domain one box wide; rejected input, which changes nothing, and
-// its messages. tests/test_periodic_detector.cpp runs random scenes over many steps.
+// its messages. tests/api/test_periodic_detector.cpp runs random scenes over many steps.
 
 #include <gtest/gtest.h>
 

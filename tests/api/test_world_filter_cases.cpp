@@ -3,7 +3,7 @@
 // statics through assign(), both pipelines handing over to the filtered path and back, the
 // predicate, statics that never pair, slots compacted under the filtered path, statics spanning
 // the double range, one filter for many ids, and bad input that changes nothing.
-// tests/test_world_filters.cpp holds the randomized checks against a brute force.
+// tests/api/test_world_filters.cpp holds the randomized checks against a brute force.
 
 #include <gtest/gtest.h>
 

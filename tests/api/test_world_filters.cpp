@@ -2,7 +2,7 @@
 // World filters and static boxes against brute force: random category and mask bits over many
 // steps with motion, insertions, removals, teleports and filter changes; static boxes that later
 // move, are removed or become dynamic; both together; a predicate; a skin.
-// tests/test_world_filter_cases.cpp holds small scenes whose pairs are known, and bad input.
+// tests/api/test_world_filter_cases.cpp holds small scenes whose pairs are known, and bad input.
 
 #include <gtest/gtest.h>
 
