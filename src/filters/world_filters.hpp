@@ -201,7 +201,7 @@ private:
         if (split()) {
             class_detections_.reset(classes_.count());
             for (std::size_t i = 0; i < moving_.size(); ++i)
-                class_detections_.join(static_cast<Slot>(i), classes_.class_of(filters_[moving_[i]]));
+                class_detections_.place(static_cast<Slot>(i), classes_.class_of(filters_[moving_[i]]));
             engine_.clear();
         } else {
             class_detections_.clear();
@@ -227,13 +227,13 @@ private:
         if (wanted && !in) {
             position_[s] = static_cast<Slot>(moving_.size());
             moving_.push_back(s);
-            if (split()) class_detections_.join(position_[s], class_now);
+            if (split()) class_detections_.place(position_[s], class_now);
             contacts_.push_back();
         } else if (!wanted && in) {
             remove_position(position_[s]);
         } else if (wanted) {
             contacts_.invalidate(position_[s]);
-            if (split()) class_detections_.change(position_[s], class_now);
+            if (split()) class_detections_.place(position_[s], class_now);
         }
     }
 
