@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <unordered_set>
@@ -43,6 +44,22 @@ template <class Store>
                                    " is repeated in the batch (an insert names each id once)");
     }
     throw error;
+}
+
+/// Calls apply(filters, i, slot, slot_count) for each id and its slot, once all of them are
+/// known: an unknown id throws before anything changes.
+template <class State, class Apply>
+void change_filters(State& state, std::span<const BoxId> ids, Apply apply) {
+    const auto& store = state.store();
+    for (const BoxId id : ids) (void)store.slot_of(id);
+    for (std::size_t i = 0; i < ids.size(); ++i) apply(state.filters(), i, store.slot_of(ids[i]), store.slot_count());
+}
+
+/// The state of the world that holds `id`, or UnknownIdError for a world that holds nothing.
+template <class State>
+const State& holding(const std::unique_ptr<State>& state, BoxId id) {
+    if (!state) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
+    return *state;
 }
 
 }  // namespace
@@ -153,8 +170,7 @@ bool World<Real, Dim>::contains(BoxId id) const {
 
 template <std::floating_point Real, int Dim>
 typename World<Real, Dim>::box_type World<Real, Dim>::box(BoxId id) const {
-    if (!state_) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
-    const auto& store = state_->store();
+    const auto& store = holding(state_, id).store();
     return store.box_at(store.slot_of(id));
 }
 
@@ -220,25 +236,21 @@ void World<Real, Dim>::set_filter(std::span<const BoxId> ids, std::span<const Fi
     if (ids.size() != filters.size())
         throw ArgumentError("set_filter: " + std::to_string(ids.size()) + " ids but " + std::to_string(filters.size()) +
                             " filters");
-    auto& state = this->state();
-    const auto& store = state.store();
-    for (const BoxId id : ids) (void)store.slot_of(id);  // throws before any change
-    for (std::size_t i = 0; i < ids.size(); ++i)
-        state.filters().set_filter(store.slot_of(ids[i]), filters[i], store.slot_count());
+    change_filters(state(), ids, [&](auto& all, std::size_t i, auto slot, std::size_t count) {
+        all.set_filter(slot, filters[i], count);
+    });
 }
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::set_filter(std::span<const BoxId> ids, const Filter& filter) {
-    auto& state = this->state();
-    const auto& store = state.store();
-    for (const BoxId id : ids) (void)store.slot_of(id);  // throws before any change
-    for (const BoxId id : ids) state.filters().set_filter(store.slot_of(id), filter, store.slot_count());
+    change_filters(state(), ids,
+                   [&](auto& all, std::size_t, auto slot, std::size_t count) { all.set_filter(slot, filter, count); });
 }
 
 template <std::floating_point Real, int Dim>
 Filter World<Real, Dim>::filter(BoxId id) const {
-    if (!state_) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
-    return state_->filters().filter_at(state_->store().slot_of(id));
+    const auto& state = holding(state_, id);
+    return state.filters().filter_at(state.store().slot_of(id));
 }
 
 template <std::floating_point Real, int Dim>
@@ -248,16 +260,15 @@ void World<Real, Dim>::set_static(BoxId id, bool is_static) {
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::set_static(std::span<const BoxId> ids, bool is_static) {
-    auto& state = this->state();
-    const auto& store = state.store();
-    for (const BoxId id : ids) (void)store.slot_of(id);  // throws before any change
-    for (const BoxId id : ids) state.filters().set_static(store.slot_of(id), is_static, store.slot_count());
+    change_filters(state(), ids, [&](auto& all, std::size_t, auto slot, std::size_t count) {
+        all.set_static(slot, is_static, count);
+    });
 }
 
 template <std::floating_point Real, int Dim>
 bool World<Real, Dim>::is_static(BoxId id) const {
-    if (!state_) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
-    return state_->filters().static_at(state_->store().slot_of(id));
+    const auto& state = holding(state_, id);
+    return state.filters().static_at(state.store().slot_of(id));
 }
 
 template <std::floating_point Real, int Dim>

@@ -24,17 +24,15 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class BoxStore {
 public:
-    using box_type = Box<Real, Dim>;
-
     [[nodiscard]] std::size_t size() const noexcept { return slot_of_id_.size(); }
     [[nodiscard]] std::size_t slot_count() const noexcept { return boxes_.size(); }
     [[nodiscard]] bool has_removals() const noexcept { return removed_ != 0; }
     [[nodiscard]] bool contains(BoxId id) const { return slot_of_id_.contains(id); }
 
-    [[nodiscard]] const box_type& box_at(Slot slot) const noexcept { return boxes_[slot]; }
+    [[nodiscard]] const Box<Real, Dim>& box_at(Slot slot) const noexcept { return boxes_[slot]; }
     [[nodiscard]] BoxId id_at(Slot slot) const noexcept { return ids_[slot]; }
     [[nodiscard]] bool alive(Slot slot) const noexcept { return alive_[slot] != 0; }
-    [[nodiscard]] std::span<const box_type> boxes() const noexcept { return boxes_; }
+    [[nodiscard]] std::span<const Box<Real, Dim>> boxes() const noexcept { return boxes_; }
     [[nodiscard]] std::span<const BoxId> ids() const noexcept { return ids_; }
     /// Counts the calls that may have changed the boxes held (insert, remove, update, assign,
     /// clear): what was built from the boxes is current while this count is unchanged. A
@@ -47,7 +45,7 @@ public:
         return slot;
     }
 
-    void insert(std::span<const BoxId> ids, std::span<const box_type> boxes) {
+    void insert(std::span<const BoxId> ids, std::span<const Box<Real, Dim>> boxes) {
         ++changes_;
         require_same_length(ids.size(), boxes.size(), "insert");
         validate_boxes(ids, boxes);
@@ -85,7 +83,7 @@ public:
         for (std::size_t i = 0; i < ids.size(); ++i) kill(ids[i], slots[i]);
     }
 
-    void update(std::span<const BoxId> ids, std::span<const box_type> boxes) {
+    void update(std::span<const BoxId> ids, std::span<const Box<Real, Dim>> boxes) {
         ++changes_;
         require_same_length(ids.size(), boxes.size(), "update");
         validate_boxes(ids, boxes);
@@ -95,7 +93,7 @@ public:
         for (std::size_t i = 0; i < ids.size(); ++i) boxes_[slot_of_id_.find(ids[i])] = boxes[i];
     }
 
-    void assign(std::span<const box_type> boxes) {
+    void assign(std::span<const Box<Real, Dim>> boxes) {
         ++changes_;
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             if (!is_valid(boxes[i])) throw InvalidBoxError(describe_invalid_box(static_cast<BoxId>(i), boxes[i]));
@@ -181,7 +179,7 @@ public:
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return boxes_.capacity() * sizeof(box_type) + ids_.capacity() * sizeof(BoxId) + alive_.capacity() +
+        return boxes_.capacity() * sizeof(Box<Real, Dim>) + ids_.capacity() * sizeof(BoxId) + alive_.capacity() +
                slot_of_id_.bytes_held() + removed_log_.capacity() * sizeof(BoxId);
     }
 
@@ -192,7 +190,7 @@ private:
                                 " boxes");
         }
     }
-    static void validate_boxes(std::span<const BoxId> ids, std::span<const box_type> boxes) {
+    static void validate_boxes(std::span<const BoxId> ids, std::span<const Box<Real, Dim>> boxes) {
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             if (!is_valid(boxes[i])) throw InvalidBoxError(describe_invalid_box(ids[i], boxes[i]));
         }
@@ -211,7 +209,7 @@ private:
         reserve_with_slack(alive_, alive_.size() + extra);
         slot_of_id_.reserve(extra);
     }
-    void append(BoxId id, const box_type& box) {
+    void append(BoxId id, const Box<Real, Dim>& box) {
         const auto slot = static_cast<Slot>(boxes_.size());
         boxes_.push_back(box);
         ids_.push_back(id);
@@ -236,7 +234,7 @@ private:
         ++removed_;
     }
 
-    std::vector<box_type> boxes_;
+    std::vector<Box<Real, Dim>> boxes_;
     std::vector<BoxId> ids_;
     std::vector<std::uint8_t> alive_;
     IdIndex slot_of_id_;

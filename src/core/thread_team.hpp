@@ -16,32 +16,20 @@
 
 namespace smb::detail {
 
-/// DetectionSettings::threads, 0 for as many as OpenMP offers; 1 without OpenMP.
+/// DetectionSettings::threads, 0 for as many as OpenMP offers; 1 without OpenMP. this_thread():
+/// the calling thread's number in the parallel region under way (0 outside one, or without
+/// OpenMP); team_size(): the number of threads in it (1 then).
+#ifdef _OPENMP
 [[nodiscard]] inline int thread_count(const DetectionSettings& settings) noexcept {
-#ifdef _OPENMP
     return std::max(1, settings.threads == 0 ? omp_get_max_threads() : static_cast<int>(settings.threads));
-#else
-    (void)settings;
-    return 1;
-#endif
 }
-
-/// The calling thread's number in the parallel region under way (0 outside one, or without
-/// OpenMP), and the number of threads in it (1 then).
-[[nodiscard]] inline int this_thread() noexcept {
-#ifdef _OPENMP
-    return omp_get_thread_num();
+[[nodiscard]] inline int this_thread() noexcept { return omp_get_thread_num(); }
+[[nodiscard]] inline int team_size() noexcept { return omp_get_num_threads(); }
 #else
-    return 0;
+[[nodiscard]] inline int thread_count(const DetectionSettings&) noexcept { return 1; }
+[[nodiscard]] inline int this_thread() noexcept { return 0; }
+[[nodiscard]] inline int team_size() noexcept { return 1; }
 #endif
-}
-[[nodiscard]] inline int team_size() noexcept {
-#ifdef _OPENMP
-    return omp_get_num_threads();
-#else
-    return 1;
-#endif
-}
 
 /// One T per thread, each on cache lines of its own: the threads write their own scratch and
 /// counts all through a pass, and two of them sharing a line would pass it back and forth.

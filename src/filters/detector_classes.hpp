@@ -17,6 +17,7 @@
 
 #include "core/pair_output.hpp"
 #include "engine/detection_engine.hpp"
+#include "filters/class_members.hpp"
 #include "filters/class_stats.hpp"
 #include "filters/filtered_sink.hpp"
 #include "filters/interaction_classes.hpp"
@@ -45,15 +46,16 @@ public:
         std::size_t reported = 0;
         for (std::size_t c = 0; c < parts_.size(); ++c) {
             Part& part = parts_[c];
-            if (part.members.empty()) {
+            const std::span<const std::uint32_t> members = members_.members(c);
+            if (members.empty()) {
                 part.engine.reset();
                 std::vector<Box<Real, Dim>>().swap(part.boxes);
                 continue;
             }
-            part.boxes.resize(part.members.size());
-            for (std::size_t k = 0; k < part.members.size(); ++k) part.boxes[k] = boxes[part.members[k]];
+            part.boxes.resize(members.size());
+            for (std::size_t k = 0; k < members.size(); ++k) part.boxes[k] = boxes[members[k]];
             if (!part.engine) part.engine = std::make_unique<DetectionEngine<Real, Dim>>();
-            FilteredSink filtered(filters, sink, settings.pair_chunk_size, part.members, !classes_.all_pass_within(c));
+            FilteredSink filtered(filters, sink, settings.pair_chunk_size, members, !classes_.all_pass_within(c));
             const PairSink filtered_sink(std::ref(filtered));
             DetectStats own;
             PairOutput output{chunk_, settings.pair_chunk_size, filtered_sink, own.pairs};
@@ -89,32 +91,25 @@ public:
         classes_.clear();
         std::vector<Part>().swap(parts_);
         std::vector<Pair>().swap(chunk_);
-        std::vector<std::uint8_t>().swap(class_of_index_);
-        std::vector<std::uint32_t>().swap(position_of_index_);
+        members_.clear();
         split_ = false;
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        std::size_t bytes = classes_.bytes_held() + parts_.capacity() * sizeof(Part) + class_of_index_.capacity() +
-                            position_of_index_.capacity() * sizeof(std::uint32_t) + chunk_.capacity() * sizeof(Pair);
+        std::size_t bytes = classes_.bytes_held() + parts_.capacity() * sizeof(Part) + members_.bytes_held() +
+                            chunk_.capacity() * sizeof(Pair);
         for (const Part& part : parts_) {
-            bytes += part.boxes.capacity() * sizeof(Box<Real, Dim>) + part.members.capacity() * sizeof(std::uint32_t);
+            bytes += part.boxes.capacity() * sizeof(Box<Real, Dim>);
             if (part.engine) bytes += sizeof(DetectionEngine<Real, Dim>) + part.engine->bytes_held();
         }
         return bytes;
     }
 
 private:
-    static constexpr std::uint8_t kNoClass = 0xFF;
-
-    /// One class: the caller's indices of its boxes, each kept at its position from call to call
-    /// (an index that leaves is swap-removed, one that joins is appended), so that the class's
-    /// engine finds the same box at the same index; a list in index order would shift every
-    /// member past one that left, and the persistent cuts would find no box where they left it.
+    /// One class, its members kept in class_members.hpp's order.
     struct Part {
         std::unique_ptr<DetectionEngine<Real, Dim>> engine;
-        std::vector<std::uint32_t> members;
-        std::vector<Box<Real, Dim>> boxes;  // box of members[k] at k
+        std::vector<Box<Real, Dim>> boxes;  // box of members(c)[k] at k
     };
 
     /// Brings the classes and their members to `filters`, the caller's index i being the box
@@ -128,20 +123,15 @@ private:
             }
         }
         if (classes_.count() < 2) return false;
-        // Indices past the array's end have left it.
-        for (std::size_t i = filters.size(); i < class_of_index_.size(); ++i) leave(i);
-        class_of_index_.resize(filters.size(), kNoClass);
-        position_of_index_.resize(filters.size(), 0);
+        members_.resize(filters.size());  // indices past the array's end have left it
         for (std::size_t i = 0; i < filters.size(); ++i) {
             const Filter& f = filters[i];
-            std::uint8_t now = kNoClass;
+            std::uint8_t now = ClassMembers::kNone;
             if (filter_interacts(f)) {
                 const std::size_t c = classes_.class_of(f);
                 if (classes_.pairs_within(c)) now = static_cast<std::uint8_t>(c);
             }
-            if (now == class_of_index_[i]) continue;
-            leave(i);
-            if (now != kNoClass) join(i, now);
+            members_.move(i, now);
         }
         return true;
     }
@@ -151,33 +141,13 @@ private:
         classes_.build(filters.size(), [&](std::size_t i) { return filters[i]; });
         parts_.clear();
         parts_.resize(classes_.count());
-        class_of_index_.assign(class_of_index_.size(), kNoClass);
-    }
-
-    void leave(std::size_t i) {
-        const std::uint8_t c = class_of_index_[i];
-        if (c == kNoClass) return;
-        std::vector<std::uint32_t>& members = parts_[c].members;
-        const std::uint32_t at = position_of_index_[i];
-        const std::uint32_t moved = members.back();
-        members[at] = moved;
-        position_of_index_[moved] = at;
-        members.pop_back();
-        class_of_index_[i] = kNoClass;
-    }
-
-    void join(std::size_t i, std::uint8_t c) {
-        std::vector<std::uint32_t>& members = parts_[c].members;
-        class_of_index_[i] = c;
-        position_of_index_[i] = static_cast<std::uint32_t>(members.size());
-        members.push_back(static_cast<std::uint32_t>(i));
+        members_.reset(classes_.count());
     }
 
     InteractionClasses classes_;
     std::vector<Part> parts_;
-    std::vector<std::uint8_t> class_of_index_;      // per caller index, kNoClass when in none
-    std::vector<std::uint32_t> position_of_index_;  // its position among its class's members
-    std::vector<Pair> chunk_;                       // the classes' pairs on their way to the filters
+    ClassMembers members_;     // the caller's indices by class
+    std::vector<Pair> chunk_;  // the classes' pairs on their way to the filters
     bool split_ = false;
 };
 

@@ -73,26 +73,27 @@ public:
     /// A cached static: (q(min), -q(max)).
     template <std::floating_point Real>
     [[nodiscard]] QuantBox<Dim> copy(const Box<Real, Dim>& box) const noexcept {
-        QuantBox<Dim> q;
-        for (int k = 0; k < Dim; ++k) {
-            q[k] = value(k, box.min[k]);
-            q[Dim + k] = static_cast<std::int16_t>(-value(k, box.max[k]));
-        }
-        return q;
+        return packed(box.min, box.max);
     }
 
     /// A tested box: (q(max), -q(min)).
     template <std::floating_point Real>
     [[nodiscard]] QuantBox<Dim> query(const Box<Real, Dim>& box) const noexcept {
+        return packed(box.max, box.min);
+    }
+
+private:
+    /// (q(first), -q(second)), axis by axis.
+    template <class Corner>
+    [[nodiscard]] QuantBox<Dim> packed(const Corner& first, const Corner& second) const noexcept {
         QuantBox<Dim> q;
         for (int k = 0; k < Dim; ++k) {
-            q[k] = value(k, box.max[k]);
-            q[Dim + k] = static_cast<std::int16_t>(-value(k, box.min[k]));
+            q[k] = value(k, first[k]);
+            q[Dim + k] = static_cast<std::int16_t>(-value(k, second[k]));
         }
         return q;
     }
 
-private:
     std::array<double, Dim> origin_{};
     std::array<double, Dim> scale_{};
 };

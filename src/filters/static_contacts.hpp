@@ -35,8 +35,6 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class StaticContacts {
 public:
-    using box_type = Box<Real, Dim>;
-
     /// Moving boxes that asked the grid again in the last detection.
     [[nodiscard]] std::size_t refreshed() const noexcept { return refreshed_; }
     /// Static copies the moving boxes held in the last detection, counted there (a pass of its
@@ -75,8 +73,8 @@ public:
 
     /// Reports every pair of moving box i (boxes[i], with info[i]'s id and filter) and a static
     /// that overlap and whose bits pass, through the predicate if there is one.
-    void detect(std::span<const box_type> boxes, std::span<const IdFilter> info, const StaticGrid<Real, Dim>& grid,
-                const PairPredicate* predicate, PairOutput& output) {
+    void detect(std::span<const Box<Real, Dim>> boxes, std::span<const IdFilter> info,
+                const StaticGrid<Real, Dim>& grid, const PairPredicate* predicate, PairOutput& output) {
         refreshed_ = 0;
         cached_ = 0;
         if (grid.empty()) return;
@@ -84,7 +82,7 @@ public:
         const double skin_floor = 0.125 * grid.smallest_cell_side();
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             if (i + kAhead < boxes.size()) prefetch_range(entries_[i + kAhead]);
-            const box_type& box = boxes[i];
+            const Box<Real, Dim>& box = boxes[i];
             Entry& e = entries_[i];
             if (!e.valid || !inside(box, e.fat)) refresh(e, box, info[i].filter, grid, skin_floor);
             if (hits_.size() < e.count) hits_.resize(e.count);
@@ -147,14 +145,14 @@ private:
     /// asks again; at least an eighth of a grid cell, for boxes of (almost) no size. On the
     /// paper's environment at Λ = 1e-3, a quarter made 4 times the refreshes (2.8% of the boxes
     /// a step after 20 steps, against 0.7%) for 0.55 times the copies; the refreshes cost more.
-    void refresh(Entry& e, const box_type& box, const Filter& filter, const StaticGrid<Real, Dim>& grid,
+    void refresh(Entry& e, const Box<Real, Dim>& box, const Filter& filter, const StaticGrid<Real, Dim>& grid,
                  double skin_floor) {
         ++refreshed_;
         double largest = 0;
         for (int k = 0; k < Dim; ++k)
             largest = std::max(largest, static_cast<double>(box.max[k]) - static_cast<double>(box.min[k]));
         const auto skin = static_cast<Real>(std::max(0.5 * largest, skin_floor));
-        box_type fat;
+        Box<Real, Dim> fat;
         for (int k = 0; k < Dim; ++k) {
             // Rounding keeps the box inside: x - skin rounds to at most x, x + skin to at least x.
             fat.min[k] = box.min[k] - skin;

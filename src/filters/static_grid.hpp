@@ -12,7 +12,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "core/tuning.hpp"
@@ -26,11 +25,9 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class StaticGrid {
 public:
-    using box_type = Box<Real, Dim>;
-
     [[nodiscard]] std::size_t size() const noexcept { return grid_.boxes.size(); }
     [[nodiscard]] bool empty() const noexcept { return grid_.boxes.empty(); }
-    [[nodiscard]] const box_type& box(std::uint32_t i) const noexcept { return grid_.boxes[i]; }
+    [[nodiscard]] const Box<Real, Dim>& box(std::uint32_t i) const noexcept { return grid_.boxes[i]; }
     [[nodiscard]] BoxId id(std::uint32_t i) const noexcept { return ids_[i]; }
     [[nodiscard]] const Filter& filter(std::uint32_t i) const noexcept { return filters_[i]; }
     /// A floor for the skin of moving boxes that have no size: a few of the finest cells, which
@@ -40,10 +37,10 @@ public:
     void clear() { *this = StaticGrid(); }
 
     /// Takes the statics (boxes, their ids and filters, as long as each other) and grids them.
-    void build(std::vector<box_type> boxes, std::vector<BoxId> ids, std::vector<Filter> filters) {
+    void build(std::vector<Box<Real, Dim>> boxes, std::vector<BoxId> ids, std::vector<Filter> filters) {
         // The grid keeps each static's input position as its id, which orders the ids and filters.
         grid_.build(
-            std::span<const box_type>(boxes), [](std::size_t i) { return static_cast<BoxId>(i); },
+            std::span<const Box<Real, Dim>>(boxes), [](std::size_t i) { return static_cast<BoxId>(i); },
             [](std::size_t) { return true; });
         ids_.resize(ids.size());
         filters_.resize(filters.size());
@@ -59,7 +56,7 @@ public:
 
     /// Calls found(i) once for every static i that overlaps `query` (closed overlap).
     template <class Found>
-    void query(const box_type& query, Found&& found) const {
+    void query(const Box<Real, Dim>& query, Found&& found) const {
         grid_.query_positions(query, found);
     }
 

@@ -42,8 +42,6 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class WorldFilters {
 public:
-    using box_type = Box<Real, Dim>;
-
     /// Whether the next detection needs this path: a filter other than the default, a static
     /// box or a predicate.
     [[nodiscard]] bool wanted() const noexcept { return statics_ != 0 || non_default_ != 0 || predicate_; }
@@ -100,7 +98,7 @@ public:
 
     /// Before BoxStore::assign(boxes): a static whose box changes makes the grid stale. Statics
     /// that assign() removes are found by the next compaction.
-    void note_assign(const BoxStore<Real, Dim>& store, std::span<const box_type> boxes) {
+    void note_assign(const BoxStore<Real, Dim>& store, std::span<const Box<Real, Dim>> boxes) {
         if (statics_ == 0 || statics_changed_) return;
         const std::size_t n = std::min(statics_flag_.size(), store.slot_count());
         for (std::size_t s = 0; s < n; ++s) {
@@ -124,7 +122,7 @@ public:
         classes_stale_ = true;
         std::vector<Slot>().swap(moving_);
         std::vector<Slot>().swap(position_);
-        std::vector<box_type>().swap(gathered_);
+        std::vector<Box<Real, Dim>>().swap(gathered_);
         std::vector<BoxId>().swap(gathered_keys_);
         std::vector<IdFilter>().swap(gathered_info_);
         known_ = 0;
@@ -186,7 +184,7 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return filters_.capacity() * sizeof(Filter) + statics_flag_.capacity() +
                (pending_.capacity() + moving_.capacity() + position_.capacity()) * sizeof(Slot) +
-               gathered_.capacity() * sizeof(box_type) + gathered_keys_.capacity() * sizeof(BoxId) +
+               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_keys_.capacity() * sizeof(BoxId) +
                gathered_info_.capacity() * sizeof(IdFilter) + engine_.bytes_held() + grid_.bytes_held() +
                contacts_.bytes_held() + classes_.bytes_held() + class_detections_.bytes_held();
     }
@@ -203,7 +201,7 @@ private:
         if (split()) {
             class_detections_.reset(classes_.count());
             for (std::size_t i = 0; i < moving_.size(); ++i)
-                class_detections_.join(static_cast<Slot>(i), classes_.class_of(filters_[moving_[i]]));
+                class_detections_.place(static_cast<Slot>(i), classes_.class_of(filters_[moving_[i]]));
             engine_.clear();
         } else {
             class_detections_.clear();
@@ -229,13 +227,13 @@ private:
         if (wanted && !in) {
             position_[s] = static_cast<Slot>(moving_.size());
             moving_.push_back(s);
-            if (split()) class_detections_.join(position_[s], class_now);
+            if (split()) class_detections_.place(position_[s], class_now);
             contacts_.push_back();
         } else if (!wanted && in) {
             remove_position(position_[s]);
         } else if (wanted) {
             contacts_.invalidate(position_[s]);
-            if (split()) class_detections_.change(position_[s], class_now);
+            if (split()) class_detections_.place(position_[s], class_now);
         }
     }
 
@@ -283,7 +281,7 @@ private:
     }
 
     void rebuild_statics(const BoxStore<Real, Dim>& store) {
-        std::vector<box_type> boxes;
+        std::vector<Box<Real, Dim>> boxes;
         std::vector<BoxId> ids;
         std::vector<Filter> filters;
         boxes.reserve(statics_);
@@ -349,7 +347,7 @@ private:
     bool engaged_ = false;
     bool statics_changed_ = true;
 
-    std::vector<box_type> gathered_;
+    std::vector<Box<Real, Dim>> gathered_;
     std::vector<IdFilter> gathered_info_;  // index i's id and filter
     std::vector<BoxId> gathered_keys_;     // index i's key for the pipeline, when packed_
     bool packed_ = false;

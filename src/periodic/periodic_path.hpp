@@ -35,13 +35,11 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class PeriodicPath {
 public:
-    using box_type = Box<Real, Dim>;
-
     /// Replaces the contents of `pairs` by the periodic pairs of `boxes`, named by `names`
     /// (empty: by index), in `domain` (checked by check_domain). All or nothing: whatever it
     /// throws (InvalidBoxError for a box the domain refuses, first), `pairs` holds what it held
     /// before and the pipeline is as it was.
-    DetectStats detect(std::span<const box_type> boxes, std::span<const BoxId> names,
+    DetectStats detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> names,
                        const PeriodicDomain<Real, Dim>& domain, const DetectionSettings& settings,
                        std::vector<PeriodicPair>& pairs, double skin = 0) {
         const Stopwatch whole;
@@ -65,7 +63,7 @@ public:
     /// detect(), then update_events(the (a, b) of the pairs): all or nothing, so the pairs are
     /// collected apart and handed over once the events took them.
     template <class UpdateEvents>
-    DetectStats detect(std::span<const box_type> boxes, std::span<const BoxId> names,
+    DetectStats detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> names,
                        const PeriodicDomain<Real, Dim>& domain, const DetectionSettings& settings,
                        std::vector<PeriodicPair>& pairs, UpdateEvents&& update_events, double skin = 0) {
         scratch_.clear();

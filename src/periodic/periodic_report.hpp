@@ -31,11 +31,9 @@ namespace smb::detail {
 template <std::floating_point Real, int Dim>
 class PeriodicReport {
 public:
-    using box_type = Box<Real, Dim>;
-
     /// `names`: the name of each of the caller's boxes (a World's ids), or empty for its index.
     /// The pairs are appended to `out`, at most `limit` of them (else PairLimitError).
-    PeriodicReport(const PeriodicImages<Real, Dim>& images, std::span<const box_type> boxes,
+    PeriodicReport(const PeriodicImages<Real, Dim>& images, std::span<const Box<Real, Dim>> boxes,
                    std::span<const BoxId> names, const PeriodicDomain<Real, Dim>& domain,
                    std::vector<PeriodicPair>& out, std::size_t limit)
         : images_(images),
@@ -85,7 +83,7 @@ private:
     /// rounding allows two shifts (both extents within a few rounding steps of half the period),
     /// and then the one nearest 0 on every axis is the pair's: the pairs of untranslated boxes,
     /// reported with the shift 0 unchecked, keep theirs.
-    [[nodiscard]] bool nearer_shift_overlaps(const box_type& a, const box_type& b,
+    [[nodiscard]] bool nearer_shift_overlaps(const Box<Real, Dim>& a, const Box<Real, Dim>& b,
                                              const std::array<std::int32_t, 3>& shift) const noexcept {
         for (int k = 0; k < Dim; ++k) {
             const auto ks = static_cast<std::size_t>(k);
@@ -129,7 +127,7 @@ private:
     }
 
     const PeriodicImages<Real, Dim>& images_;
-    std::span<const box_type> boxes_;
+    std::span<const Box<Real, Dim>> boxes_;
     std::span<const BoxId> names_;
     const PeriodicDomain<Real, Dim>& domain_;
     std::vector<PeriodicPair>& out_;

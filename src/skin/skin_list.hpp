@@ -22,13 +22,10 @@
 // (candidate_list.hpp) reads memory almost in order. The caller's array is read once per
 // detection, in that order.
 
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <span>
 #include <vector>
 
