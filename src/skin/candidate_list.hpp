@@ -14,6 +14,7 @@
 #include "core/growth.hpp"
 #include "core/id_index.hpp"
 #include "core/ordered_rounds.hpp"
+#include "core/pair_output.hpp"
 #include "core/thread_team.hpp"
 #include "core/tuning.hpp"
 #include "skin/held_overlap.hpp"
@@ -92,8 +93,9 @@ public:
 
     /// What a pass reads: the held boxes by position (one more of padding, for overlap_bits()),
     /// the positions dropped in this detection (a bit each), the sure margin, the caller's index
-    /// of each position, and confirm(a, b, sure, retested), which says whether a pair the floats
-    /// pass holds for the input too, counting in `retested` the pairs it tests again.
+    /// of each position, confirm(a, b, sure, retested), which says whether a pair the floats
+    /// pass holds for the input too, counting in `retested` the pairs it tests again, and whether
+    /// the held boxes are the input's own (`exact`: a held overlap is the pair, confirm is not asked).
     template <class Confirm, class Name>
     struct Pass {
         const Held* held;
@@ -101,6 +103,7 @@ public:
         float sure_margin;
         std::span<const Name> name_of;  // the name each position's pairs are reported under
         const Confirm& confirm;
+        bool exact;
     };
 
     /// Tests every candidate, after dropping those of boxes marked in pass.dirty when `dropping`,
@@ -182,15 +185,27 @@ private:
     }
 
     /// Candidates [first, last) into `out`; flush() is called whenever a run of hits has become
-    /// pairs. Branch-free over the candidates (about half of them overlap, which no predictor
-    /// guesses).
+    /// pairs.
     template <class Confirm, class Name, class Flush>
     void test_range(const Pass<Confirm, Name>& pass, std::size_t first, std::size_t last, bool dropping, Worker& worker,
                     Block& out, Flush&& flush) {
+        if (pass.exact)
+            test_range_as<true>(pass, first, last, dropping, worker, out, flush);
+        else
+            test_range_as<false>(pass, first, last, dropping, worker, out, flush);
+    }
+
+    /// Branch-free over the candidates (about half of them overlap, which no predictor guesses).
+    /// `exact`: the held boxes are the input's own, so no sure bit is kept and no pair confirmed.
+    template <bool exact, class Confirm, class Name, class Flush>
+    void test_range_as(const Pass<Confirm, Name>& pass, std::size_t first, std::size_t last, bool dropping,
+                       Worker& worker, Block& out, Flush& flush) {
         constexpr std::size_t kRun = 2048;
         worker.hits.resize(kRun);
         worker.sure.resize(kRun);
         Candidate* candidates = candidates_.data();
+        Candidate* hit_list = worker.hits.data();
+        std::uint8_t* sure_list = worker.sure.data();
         const Held* held = pass.held;
         const std::uint64_t* dirty = pass.dirty;
         const float sure_margin = pass.sure_margin;
@@ -207,30 +222,42 @@ private:
                     ++out.tombstones;
                 }
             }
-            const std::uint32_t bits = overlap_bits<Dim>(held + candidate.a, held + candidate.b, sure_margin);
-            worker.hits[hits] = candidate;
-            worker.sure[hits] = static_cast<std::uint8_t>(bits >> 1);
-            hits += keep & bits;
+            hit_list[hits] = candidate;
+            if constexpr (exact) {
+                hits += keep & overlap_bit<Dim>(held + candidate.a, held + candidate.b);
+            } else {
+                const std::uint32_t bits = overlap_bits<Dim>(held + candidate.a, held + candidate.b, sure_margin);
+                sure_list[hits] = static_cast<std::uint8_t>(bits >> 1);
+                hits += keep & bits;
+            }
             if (hits == kRun) {
-                pairs_of_hits(pass, hits, worker, out);
+                pairs_of_hits<exact>(pass, hits, worker, out);
                 flush();
                 hits = 0;
             }
         }
-        pairs_of_hits(pass, hits, worker, out);
+        pairs_of_hits<exact>(pass, hits, worker, out);
     }
 
-    /// The pairs of a run of hits, each confirmed on the input where the floats cannot settle it.
-    template <class Confirm, class Name>
+    /// The pairs of a run of hits, each confirmed on the input where the floats cannot settle it
+    /// (never where they are `exact`).
+    template <bool exact, class Confirm, class Name>
     static void pairs_of_hits(const Pass<Confirm, Name>& pass, std::size_t hits, const Worker& worker, Block& out) {
+        // Written by index and trimmed after: a push_back per pair stays a call here.
+        const std::size_t base = out.pairs.size();
+        out.pairs.resize(base + hits);
+        Pair* pairs = out.pairs.data() + base;
+        const Name* name_of = pass.name_of.data();
+        std::size_t kept = 0;
         for (std::size_t i = 0; i < hits; ++i) {
             const Candidate hit = worker.hits[i];
             if (hit.a == hit.b) continue;  // a tombstone
-            if (!pass.confirm(hit.a, hit.b, worker.sure[i] != 0, out.retested)) continue;
-            const BoxId a = pass.name_of[hit.a];
-            const BoxId b = pass.name_of[hit.b];
-            out.pairs.push_back(a < b ? Pair{a, b} : Pair{b, a});
+            if constexpr (!exact) {
+                if (!pass.confirm(hit.a, hit.b, worker.sure[i] != 0, out.retested)) continue;
+            }
+            pairs[kept++] = ordered_pair(BoxId{name_of[hit.a]}, BoxId{name_of[hit.b]});
         }
+        out.pairs.resize(base + kept);
     }
 
     std::vector<Candidate> candidates_;  // pairs of positions whose fat boxes overlap, each once; and tombstones

@@ -332,8 +332,8 @@ private:
             return confirmed(a, b, sure, retested);
         };
         auto test_named = [&]<class Name>(std::span<const Name> names) {
-            const typename Candidates::template Pass<decltype(confirm), Name> pass{held_.data(), dirty_.data(),
-                                                                                   sure_margin_, names, confirm};
+            const typename Candidates::template Pass<decltype(confirm), Name> pass{
+                held_.data(), dirty_.data(), sure_margin_, names, confirm, kExact};
             retested_ += candidates_.test(pass, dropping, threads_, report);
         };
         if (keys_.empty())
