@@ -15,6 +15,7 @@
 #include "core/growth.hpp"
 #include "core/ordered_rounds.hpp"
 #include "core/pair_output.hpp"
+#include "core/prefetch.hpp"
 #include "core/thread_team.hpp"
 #include "core/tuning.hpp"
 #include "cuts/cell_order.hpp"
@@ -129,8 +130,15 @@ template <std::floating_point Real, int Dim>
 template <class Checked, class Report, class Work>
 std::size_t CellChecks<Real, Dim>::in_ordered_rounds(const Checked& checked, std::size_t count, Report& report,
                                                      std::vector<Position>& home, Work&& work) {
-    auto report_ids = [&](Position a, Position b, bool sure = false) {
-        if (checked.confirm(a, b, sure)) report(checked.order.id_at(a), checked.order.id_at(b));
+    // The ids of the positions, read once here: the order does not change while the cells are
+    // checked, and a pair is a few instructions, where reading them through `checked` after each
+    // report costs a chain of dependent loads.
+    const bool own_ids = checked.order.own_ids();
+    const BoxId* const ids = checked.order.ids().data();
+    const Slot* const slots = checked.order.order().data();
+    auto id_at = [own_ids, ids, slots](Position position) { return own_ids ? ids[position] : BoxId{slots[position]}; };
+    auto report_ids = [&report, &checked, id_at](Position a, Position b, bool sure = false) {
+        if (checked.confirm(a, b, sure)) report(id_at(a), id_at(b));
     };
     std::size_t moves = 0;
     if (threads_ == 1) {
@@ -147,7 +155,7 @@ std::size_t CellChecks<Real, Dim>::in_ordered_rounds(const Checked& checked, std
             block.moves = 0;
             // The pairs are written by index into an array grown by doubling, not push_back:
             // one store a pair, where push_back is a call out of line (as in PairOutput).
-            auto collect = [&block, &checked](Position x, Position y, bool sure = false) {
+            auto collect = [&block, &checked, id_at](Position x, Position y, bool sure = false) {
                 if (block.filled == kBlockPairCap) {
                     block.overflowed = true;
                     return;
@@ -155,7 +163,7 @@ std::size_t CellChecks<Real, Dim>::in_ordered_rounds(const Checked& checked, std
                 if (!checked.confirm(x, y, sure)) return;
                 if (block.filled == block.pairs.size())
                     block.pairs.resize(std::min(kBlockPairCap, std::max<std::size_t>(1024, 2 * block.filled)));
-                block.pairs[block.filled++] = ordered_pair(checked.order.id_at(x), checked.order.id_at(y));
+                block.pairs[block.filled++] = ordered_pair(id_at(x), id_at(y));
             };
             block.moves = work(item, collect, block.home, &block.overflowed);
         },
@@ -184,24 +192,31 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
     const bool own_ids = checked.order.own_ids();
     const std::span<const BoxId> ids = checked.order.ids();
     const std::span<const Slot> slots = checked.order.order();
+    // The boxes of the cells ahead lie in a few runs of the ordered array, mostly beyond L2: ask
+    // for them (and for their ids, which the report reads) while this cell is checked.
+    auto prefetch_entries = [&](std::size_t from_cell, std::size_t to_cell) {
+        if (to_cell >= cell_begin.size()) return;
+        for (std::uint32_t i = cell_begin[from_cell]; i < cell_begin[to_cell]; ++i) {
+            prefetch_whole(&boxes[cells[i]]);
+            __builtin_prefetch(own_ids ? static_cast<const void*>(&ids[cells[i]])
+                                       : static_cast<const void*>(&slots[cells[i]]));
+        }
+    };
+    // A column holds all its boxes in its first cell, the others being empty, so that the cells
+    // two ahead are empty too: the whole next column is asked for instead (about a thousand
+    // boxes and ids, which L2 holds while this column is checked).
+    const bool swept_columns = !checked.columns.entries.empty();
+    if (swept_columns) prefetch_entries((column + 1) * k, (column + 2) * k);
     std::size_t moves = 0;
     for (std::size_t cell = column * k; cell < (column + 1) * k; ++cell) {
         if (give_up != nullptr && *give_up) break;
         const std::uint32_t first = cell_begin[cell];
         const std::uint32_t size = cell_begin[cell + 1] - first;
         if (size == 0) continue;
-        // The boxes two cells ahead lie in a few runs of the ordered array, mostly in L3: ask
-        // for them now so that they arrive while this cell is checked.
-        constexpr std::size_t ahead = 2;
-        if (cell + ahead + 1 < cell_begin.size()) {
-            for (std::uint32_t i = cell_begin[cell + ahead]; i < cell_begin[cell + ahead + 1]; ++i) {
-                __builtin_prefetch(&boxes[cells[i]]);
-                __builtin_prefetch(own_ids ? static_cast<const void*>(&ids[cells[i]])
-                                           : static_cast<const void*>(&slots[cells[i]]));
-            }
-        }
+        constexpr std::size_t ahead = 2;  // cells of about the target population
+        if (!swept_columns) prefetch_entries(cell + ahead, cell + ahead + 1);
         const std::span<const Position> entries(cells.data() + first, size);
-        if (!checked.columns.entries.empty()) {
+        if (swept_columns) {
             // Swept at every size, so that every column is left in x order for its queries.
             moves +=
                 own_ids ? cell_pairs.check_by_sweep(entries, boxes, ids, checked.cells.floor_of(cell), collect, home)

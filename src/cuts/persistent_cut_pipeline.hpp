@@ -129,7 +129,8 @@ private:
 
     /// Held boxes at positions a and b overlap: true when their input boxes do too. `sure`:
     /// the cell check found them overlapping by the sure margin (set_scene_bounds()).
-    [[nodiscard]] bool confirmed(Position a, Position b, bool sure) {
+    /// Inlined: called for every pair the cells report, and for exact input it does nothing.
+    [[nodiscard, gnu::always_inline]] inline bool confirmed(Position a, Position b, bool sure) {
         if constexpr (kRounded) sure = sure || surely_overlap(cell_order_.boxes()[a], cell_order_.boxes()[b]);
         // The input is indexed by slot, which the order still gives while a detection runs.
         return confirmed_on_input<Real>(input_, cell_order_.order(), a, b, sure, [this] {
