@@ -21,6 +21,7 @@ std::vector<PeerInfo> available_peers() {
         {"smb_2threads", true, true},
         {"smb_double", true, true},
         {"smb_paper", true, true},
+        {"smb_skin", true, true},
         {"smb_detector", true, true},
         {"smb_detector_2threads", true, true},
         {"smb_detector_skin", true, true},
@@ -57,6 +58,11 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
     if (name == "smb_paper") {
         WorldSettings settings;
         settings.pipeline = Pipeline::paper_lists;
+        return make_smb_world_peer<Dim>(settings);
+    }
+    if (name == "smb_skin") {
+        WorldSettings settings;
+        settings.skin = 0.1;  // as smb_detector_skin's
         return make_smb_world_peer<Dim>(settings);
     }
     if (name == "smb_detector") return make_smb_detector_peer<Dim>(DetectorSettings{});
