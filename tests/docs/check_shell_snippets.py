@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Checks the ```sh blocks of the README and docs/ against the project, so that a command a
+"""Checks the ```sh blocks of the READMEs (the project's and the tool's) and docs/ against the project, so that a command a
 page shows keeps working as shown. Running them as written is out of reach of a test (builds,
 benchmarks of many minutes, MPI runs), so each command is checked for what can drift:
 
@@ -338,7 +338,8 @@ def main():
     arguments = parser.parse_args()
     source = os.path.abspath(arguments.source_dir)
     checker = Checker(os.path.abspath(arguments.smb), source, os.path.abspath(arguments.build_dir))
-    pages = [os.path.join(source, "README.md")] + sorted(glob.glob(os.path.join(source, "docs", "*.md")))
+    pages = [os.path.join(source, "README.md"), os.path.join(source, "tools", "smb", "README.md")] + sorted(
+        glob.glob(os.path.join(source, "docs", "*.md")))
     blocks = passed_over = 0
     with tempfile.TemporaryDirectory(prefix="smb-doc-shell-") as workdir:
         for page in pages:
