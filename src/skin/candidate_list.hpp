@@ -85,9 +85,7 @@ public:
         out.reserve(live());
         for (const Candidate& candidate : candidates_) {
             if (candidate.a == candidate.b) continue;  // a tombstone
-            const BoxId a = name_of[candidate.a];
-            const BoxId b = name_of[candidate.b];
-            out.push_back(a < b ? Pair{a, b} : Pair{b, a});
+            out.push_back(ordered_pair(BoxId{name_of[candidate.a]}, BoxId{name_of[candidate.b]}));
         }
     }
 
