@@ -66,6 +66,10 @@ public:
     /// of the copy holds.
     [[nodiscard]] std::span<const Slot> order() const noexcept { return order_; }
 
+    /// The order, to be rewritten as any other order of the same slots before copy()
+    /// (column_presort.hpp).
+    [[nodiscard]] std::vector<Slot>& rewritable_order() noexcept { return order_; }
+
     /// After a detection: the slot each position of its copy holds (the order it was made in).
     [[nodiscard]] std::span<const Slot> copied_from() const noexcept { return next_order_; }
 

@@ -93,7 +93,11 @@ public:
         // four against a count of at most 64 planes (segment_of), one in two against a binary search.
         const std::size_t share = segments <= 65 ? 4 : 2;
         if (located > 0) without_hint_[level] = share * misses > located;
+        miss_share_[level] = located > 0 ? static_cast<double>(misses) / static_cast<double>(located) : 0.0;
     }
+
+    /// The share of the entries of `level` whose min the hint missed, in the last judgement.
+    [[nodiscard]] double miss_share(int level) const noexcept { return miss_share_[level]; }
 
     /// Every level locates without the hint (a cold order: the previous entry says nothing of the
     /// next one's segment), or every level tries it again.
@@ -101,6 +105,7 @@ public:
 
 private:
     std::array<bool, Dim> without_hint_{};  // per level, judge_hints()
+    std::array<double, Dim> miss_share_{};  // per level, judge_hints()
 };
 
 template <std::floating_point Real, int Dim>

@@ -80,6 +80,8 @@ public:
 
     /// Every level locates without the hint (a cold order), or every level tries it again.
     void set_without_hint(bool without) noexcept { locator_.set_without_hint(without); }
+    /// The share of the first level's entries whose segment the hint missed in the last run().
+    [[nodiscard]] double first_level_misses() const noexcept { return locator_.miss_share(0); }
 
     /// The cells the last run() built, bounded by `cuts`.
     [[nodiscard]] Cells<Real, Dim> cells(const CutTree<Real, Dim>& cuts) const noexcept {

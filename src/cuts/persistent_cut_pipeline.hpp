@@ -39,6 +39,7 @@
 #include "core/thread_team.hpp"
 #include "cuts/cell_checks.hpp"
 #include "cuts/cell_order.hpp"
+#include "cuts/column_presort.hpp"
 #include "cuts/cut_tree.hpp"
 #include "cuts/level_regrouping.hpp"
 #include "smb/box.hpp"
@@ -79,6 +80,9 @@ public:
     void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const DetectionSettings& settings,
                 Report& report, DetectStats& stats);
 
+    /// Whether the next detection sorts the order by column before the copy (column_presort.hpp).
+    [[nodiscard]] bool presorting() const noexcept { return presort_.sorting(); }
+
     /// The order the last detection left: every slot once, cell by cell.
     [[nodiscard]] std::span<const Slot> order() const noexcept { return cell_order_.order(); }
 
@@ -86,6 +90,7 @@ public:
     void set_origin(const std::array<Input, Dim>& origin) {
         origin_ = origin;
         cuts_.forget();
+        presort_.forget();
         order_state_ = OrderState::fresh;
     }
 
@@ -117,7 +122,8 @@ public:
     [[nodiscard]] std::size_t retested() const noexcept { return retested_; }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return cell_order_.bytes_held() + cuts_.bytes_held() + regrouping_.bytes_held() + checks_.bytes_held();
+        return cell_order_.bytes_held() + cuts_.bytes_held() + regrouping_.bytes_held() + checks_.bytes_held() +
+               presort_.bytes_held();
     }
 
 private:
@@ -148,6 +154,7 @@ private:
     CutTree<Real, Dim> cuts_;
     LevelRegrouping<Real, Dim> regrouping_;
     CellChecks<Real, Dim> checks_;
+    ColumnPresort<Real, Dim, Input> presort_;
     /// What the order follows: no cells at all (the first detection, a new origin; the order is
     /// cold, each cell's boxes scattered over the ordered copy), or last step's cells.
     enum class OrderState { fresh, follows_cells };
@@ -178,6 +185,7 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     cell_order_.list_arrivals(n);
     if (n == 0) {
         cuts_.forget();
+        presort_.forget();
         return;
     }
     const std::uint32_t segments_before = cuts_.segments();
@@ -194,6 +202,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
 
     const Stopwatch regrouping_watch;
     const Stopwatch copy_watch;
+    const bool presorted = !cold && presort_.sorting();
+    if (cold) presort_.forget();
+    if (presorted) presort_.sort(input, origin_, cuts_, cell_order_.rewritable_order());
     cell_order_.copy(input, ids, origin_, threads_);
     stats.copy_seconds = copy_watch.seconds();
     const std::span<const Box<Real, Dim>> boxes = cell_order_.boxes();
@@ -202,6 +213,7 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     // The misses of a cold order say nothing of the next detection, whose entries will come in
     // this one's cells: it tries the hint, and judges again from its own misses.
     if (cold) regrouping_.set_without_hint(false);
+    if (!cold && !presorted) presort_.judge(regrouping_.first_level_misses());
     stats.quantile_seconds = cutting;
     stats.cut_regroup_seconds = regrouping_watch.seconds() - cutting;
     stats.cells = cuts_.cells();

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: MIT
+// The order sorted by column before the copy (src/cuts/column_presort.hpp): a permutation of the
+// slots grouped by the column of each box's lower corner; started by hints that miss, stopped
+// once the boxes keep their columns; and the persistent cuts exact with it on, step after step
+// of boxes that jump anywhere, against brute force.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <span>
+#include <vector>
+
+#include "core/pair_output.hpp"
+#include "cuts/column_presort.hpp"
+#include "cuts/persistent_cut_pipeline.hpp"
+#include "reference/brute_force.hpp"
+#include "smb/settings.hpp"
+#include "smb/stats.hpp"
+
+namespace smb::detail {
+namespace {
+
+template <int Dim>
+std::vector<Box<float, Dim>> scattered_boxes(std::size_t n, float side, std::mt19937_64& random) {
+    std::uniform_real_distribution<float> place(0.0F, side);
+    std::uniform_real_distribution<float> extent(0.2F, 1.0F);
+    std::vector<Box<float, Dim>> boxes(n);
+    for (Box<float, Dim>& box : boxes) {
+        for (int k = 0; k < Dim; ++k) {
+            box.min[k] = place(random);
+            box.max[k] = box.min[k] + extent(random);
+        }
+    }
+    return boxes;
+}
+
+/// Planes of every group of every level but the deepest, cut at the boxes' lower corners.
+template <int Dim>
+CutTree<float, Dim> planes_for(std::span<const Box<float, Dim>> boxes, std::uint32_t segments) {
+    CutTree<float, Dim> cuts;
+    cuts.reshape(segments);
+    // Evenly spaced planes over [0, 100): where they lie does not matter to the sort.
+    for (int level = 0; level + 1 < Dim; ++level) {
+        for (std::size_t group = 0; group < cuts.groups(level); ++group) {
+            QuantileSelector<float> selector;
+            for (std::size_t i = 0; i < 4 * segments; ++i)
+                selector.keys.push_back(100.0F * static_cast<float>(i) / static_cast<float>(4 * segments));
+            cuts.cut(level, group, selector);
+        }
+    }
+    (void)boxes;
+    return cuts;
+}
+
+template <int Dim>
+std::uint32_t column_of(const Box<float, Dim>& box, const CutTree<float, Dim>& cuts) {
+    std::size_t group = 0;
+    for (int level = 0; level + 1 < Dim; ++level)
+        group = group * cuts.segments() + segment_of(cuts.cuts(level, group), box.min[Dim - 1 - level]);
+    return static_cast<std::uint32_t>(group);
+}
+
+TEST(ColumnPresort, SortsEverySlotOnceByColumnAndBySlotWithin) {
+    std::mt19937_64 random(11);
+    const std::vector<Box<float, 3>> boxes = scattered_boxes<3>(5000, 100.0F, random);
+    const CutTree<float, 3> cuts = planes_for<3>(boxes, 7);
+    ColumnPresort<float, 3, float> presort;
+    std::vector<Slot> order(boxes.size());
+    std::iota(order.rbegin(), order.rend(), Slot{0});
+    presort.sort(boxes, {}, cuts, order);
+    ASSERT_EQ(order.size(), boxes.size());
+    std::vector<Slot> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], i);
+    for (std::size_t i = 1; i < order.size(); ++i) {
+        const std::uint32_t before = column_of<3>(boxes[order[i - 1]], cuts);
+        const std::uint32_t here = column_of<3>(boxes[order[i]], cuts);
+        ASSERT_LE(before, here) << "at " << i;
+        if (before == here) {
+            ASSERT_LT(order[i - 1], order[i]) << "at " << i;
+        }
+    }
+    EXPECT_GT(column_of<3>(boxes[order.back()], cuts), 0U);
+}
+
+TEST(ColumnPresort, StartsWhenHintsMissAndStopsWhenBoxesKeepTheirColumns) {
+    std::mt19937_64 random(12);
+    std::vector<Box<float, 2>> boxes = scattered_boxes<2>(4000, 100.0F, random);
+    const CutTree<float, 2> cuts = planes_for<2>(boxes, 16);
+    ColumnPresort<float, 2, float> presort;
+    std::vector<Slot> order(boxes.size());
+    presort.judge(0.1);
+    EXPECT_FALSE(presort.sorting());
+    presort.judge(0.6);
+    EXPECT_TRUE(presort.sorting());
+    presort.sort(boxes, {}, cuts, order);  // nothing to compare with yet
+    EXPECT_TRUE(presort.sorting());
+    boxes = scattered_boxes<2>(4000, 100.0F, random);  // every box jumps anywhere
+    presort.sort(boxes, {}, cuts, order);
+    EXPECT_TRUE(presort.sorting());
+    EXPECT_GT(presort.bytes_held(), 4000 * sizeof(std::uint32_t) - 1);
+    presort.sort(boxes, {}, cuts, order);  // no box moved
+    EXPECT_FALSE(presort.sorting());
+    EXPECT_EQ(presort.bytes_held(), 0U);
+}
+
+/// Runs `pipeline` on `boxes` and returns its pairs, sorted.
+template <int Dim>
+std::vector<Pair> detected(PersistentCutPipeline<float, Dim>& pipeline, std::span<const Box<float, Dim>> boxes) {
+    std::vector<Pair> pairs;
+    std::vector<Pair> chunk;
+    std::size_t count = 0;
+    const PairSink sink([&](std::span<const Pair> run) { pairs.insert(pairs.end(), run.begin(), run.end()); });
+    PairOutput output(chunk, 4096, sink, count);
+    DetectStats stats;
+    pipeline.detect(boxes, {}, DetectionSettings{}, output, stats);
+    output.flush();
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+}
+
+template <int Dim>
+void check_jumping_boxes(std::uint64_t seed) {
+    std::mt19937_64 random(seed);
+    const std::size_t n = 3000;
+    const float side = Dim == 3 ? 22.0F : 90.0F;
+    std::vector<Box<float, Dim>> boxes = scattered_boxes<Dim>(n, side, random);
+    PersistentCutPipeline<float, Dim> pipeline;
+    std::uniform_real_distribution<float> jump(-0.5F * side, 0.5F * side);
+    std::uniform_real_distribution<float> unit(0.0F, 1.0F);
+    bool presorted = false;
+    for (int step = 0; step < 30; ++step) {
+        SCOPED_TRACE(step);
+        if (step == 20) {
+            // The boxes settle: the sort must step aside again.
+            const std::vector<Pair> expected = test::brute_force_pairs<float, Dim>(boxes);
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(detected<Dim>(pipeline, boxes), expected);
+            EXPECT_FALSE(pipeline.presorting());
+        }
+        for (Box<float, Dim>& box : boxes) {
+            for (int k = 0; k < Dim; ++k) {
+                const float d = jump(random);
+                box.min[k] += d;
+                box.max[k] += d;
+            }
+        }
+        // A box that shrinks to a point, so that the columns see every shape.
+        Box<float, Dim>& point = boxes[static_cast<std::size_t>(unit(random) * (n - 1))];
+        point.max = point.min;
+        const std::vector<Pair> expected = test::brute_force_pairs<float, Dim>(boxes);
+        ASSERT_EQ(detected<Dim>(pipeline, boxes), expected);
+        presorted = presorted || pipeline.presorting();
+    }
+    EXPECT_TRUE(presorted) << "the boxes jumped across columns at every step";
+}
+
+TEST(ColumnPresort, PersistentCutsStayExactWhileTheOrderIsSortedByColumn3D) { check_jumping_boxes<3>(21); }
+TEST(ColumnPresort, PersistentCutsStayExactWhileTheOrderIsSortedByColumn2D) { check_jumping_boxes<2>(22); }
+
+}  // namespace
+}  // namespace smb::detail
