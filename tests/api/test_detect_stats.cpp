@@ -141,7 +141,9 @@ TEST(DetectStats, SkinAndStaticsEachHaveTheirOwnFields) {
                 if (statics) {
                     EXPECT_GT(stats.static_contacts, 0U);
                     EXPECT_EQ(stats.statics_rebuilt, step == 0);
-                    if (step == 0) EXPECT_EQ(stats.static_refreshed, boxes.size() - 500) << "every box arrived";
+                    if (step == 0) {
+                        EXPECT_EQ(stats.static_refreshed, boxes.size() - 500) << "every box arrived";
+                    }
                 } else {
                     EXPECT_EQ(stats.static_contacts + stats.static_refreshed, 0U);
                     EXPECT_FALSE(stats.statics_rebuilt);
