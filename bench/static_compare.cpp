@@ -108,8 +108,8 @@ Timing run(Env& env, World& world, int steps, Prepare&& prepare) {
         pairs.clear();  // a caller with no use for the old pairs: detect() then moves none
         const smb::DetectStats stats = world.detect(pairs);
         step_times.push_back(since(start));
-        t.refreshed += stats.skin_refreshed;
-        t.cached = stats.skin_candidates;
+        t.refreshed += stats.static_refreshed;
+        t.cached = stats.static_contacts;
         update_times.push_back(updated);
     }
     t.steady = median(step_times);

@@ -19,6 +19,7 @@ namespace {
 /// settings.
 const DetectorSettings kDefaultSettings{};
 const DetectStats kNoStats{};
+const DetectProfile kNoProfile{};
 
 }  // namespace
 
@@ -111,6 +112,11 @@ const DetectorSettings& Detector<Real, Dim>::settings() const noexcept {
 template <std::floating_point Real, int Dim>
 const DetectStats& Detector<Real, Dim>::last_stats() const noexcept {
     return state_ ? state_->last_stats() : kNoStats;
+}
+
+template <std::floating_point Real, int Dim>
+const DetectProfile& Detector<Real, Dim>::last_profile() const noexcept {
+    return state_ ? state_->last_profile() : kNoProfile;
 }
 
 template <std::floating_point Real, int Dim>

@@ -21,6 +21,7 @@
 #include "smb/candidate_pairs.hpp"
 #include "smb/detector.hpp"
 #include "smb/errors.hpp"
+#include "smb/profile.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -35,6 +36,7 @@ public:
 
     const DetectorSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
+    const DetectProfile& last_profile() const noexcept { return profile_; }
     HeldPrecision last_precision() const noexcept {
         return classes_.split() ? classes_.precision() : engine_.precision();
     }
@@ -62,6 +64,7 @@ public:
         classes_.clear();
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
+        profile_ = {};
     }
 
     DetectStats detect(std::span<const Box<Real, Dim>> boxes, const PairSink& sink) {
@@ -70,15 +73,13 @@ public:
         skin_detected_ = false;
         candidates_ready_ = false;
         DetectStats stats;
+        DetectProfile profile;
         stats.boxes = boxes.size();
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
-        engine_.detect({boxes, {}, nullptr, false}, settings_, settings_.skin, output, stats);
+        engine_.detect({boxes, {}, nullptr, false}, settings_, settings_.skin, output, stats, profile);
         output.flush();
         skin_detected_ = engine_.skin_detected();
-        stats.bytes_held = bytes_held();
-        stats.total_seconds = whole.seconds();
-        stats_ = stats;
-        return stats;
+        return finish(stats, profile, whole);
     }
 
     /// The detection with filters (smb/filter.hpp), `filters` checked against `boxes`: the pairs
@@ -96,28 +97,23 @@ public:
             const Stopwatch whole;
             (void)checked_bounds(boxes);
             DetectStats split;
-            if (classes_.detect(boxes, filters, sink, settings_, split)) {
+            DetectProfile profile;
+            if (classes_.detect(boxes, filters, sink, settings_, split, profile)) {
                 engine_.clear();
                 skin_detected_ = false;
                 split.boxes = boxes.size();
-                split.bytes_held = bytes_held();
-                split.total_seconds = whole.seconds();
-                stats_ = split;
-                return split;
+                return finish(split, profile, whole);
             }
             gathered = gather_interacting(boxes, filters.filters, gathered_, gathered_origin_);
         }
         const std::span<const std::uint32_t> origin =
             gathered ? std::span<const std::uint32_t>(gathered_origin_) : std::span<const std::uint32_t>();
         FilteredSink filtered(filters, sink, settings_.pair_chunk_size, origin);
-        DetectStats stats =
-            detect(gathered ? std::span<const Box<Real, Dim>>(gathered_) : boxes, PairSink(std::ref(filtered)));
-        stats.boxes = boxes.size();
-        stats.pairs = filtered.finish();
-        stats_.boxes = stats.boxes;
-        stats_.pairs = stats.pairs;
+        detect(gathered ? std::span<const Box<Real, Dim>>(gathered_) : boxes, PairSink(std::ref(filtered)));
+        stats_.boxes = boxes.size();
+        stats_.pairs = filtered.finish();
         if (gathered) skin_detected_ = false;
-        return stats;
+        return stats_;
     }
 
     /// The periodic detection (periodic/periodic_path.hpp) into `pairs`, `update_events` (if
@@ -130,8 +126,10 @@ public:
         check_domain(domain);  // the boxes are checked as they are gathered
         skin_detected_ = false;
         if (!periodic_) periodic_ = std::make_unique<PeriodicPath<Real, Dim>>();
-        stats_ = periodic_->detect(boxes, {}, domain, settings_, pairs, update_events..., settings_.skin);
-        return stats_;
+        const Stopwatch whole;
+        DetectProfile profile;
+        return finish(periodic_->detect(boxes, {}, domain, settings_, pairs, update_events..., profile, settings_.skin),
+                      profile, whole);
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
@@ -141,9 +139,19 @@ public:
     }
 
 private:
+    /// What every detection closes with, whichever path it took.
+    DetectStats finish(DetectStats stats, const DetectProfile& profile, const Stopwatch& whole) {
+        stats.bytes_held = bytes_held();
+        stats.total_seconds = whole.seconds();
+        stats_ = stats;
+        if (settings_.profile) profile_ = profile;
+        return stats;
+    }
+
     DetectorSettings settings_;
     DetectionEngine<Real, Dim> engine_;
     DetectStats stats_;
+    DetectProfile profile_;  // all zero unless settings_.profile
     std::vector<Pair> chunk_;
     std::vector<Box<Real, Dim>> gathered_;
     std::vector<std::uint32_t> gathered_origin_;

@@ -30,6 +30,7 @@ namespace {
 /// What a moved-from world (one without a state) answers: it is empty, with default settings.
 const WorldSettings kDefaultSettings{};
 const DetectStats kNoStats{};
+const DetectProfile kNoProfile{};
 
 /// After the store refused an insert batch for a duplicate id: the same search the store made
 /// (the first id that is in the world or earlier in the batch), to say which of the two it is.
@@ -279,6 +280,11 @@ void World<Real, Dim>::set_pair_predicate(PairPredicate predicate) {
 template <std::floating_point Real, int Dim>
 const DetectStats& World<Real, Dim>::last_stats() const noexcept {
     return state_ ? state_->last_stats() : kNoStats;
+}
+
+template <std::floating_point Real, int Dim>
+const DetectProfile& World<Real, Dim>::last_profile() const noexcept {
+    return state_ ? state_->last_profile() : kNoProfile;
 }
 
 template <std::floating_point Real, int Dim>

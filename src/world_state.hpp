@@ -28,6 +28,7 @@
 #include "smb/errors.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair_events.hpp"
+#include "smb/profile.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -59,6 +60,7 @@ public:
     const BoxStore<Real, Dim>& store() const noexcept { return store_; }
     const WorldSettings& settings() const noexcept { return settings_; }
     const DetectStats& last_stats() const noexcept { return stats_; }
+    const DetectProfile& last_profile() const noexcept { return profile_; }
     WorldFilters<Real, Dim>& filters() noexcept { return filters_; }
     const WorldFilters<Real, Dim>& filters() const noexcept { return filters_; }
 
@@ -76,36 +78,39 @@ public:
         path_.template emplace<DetectionEngine<Real, Dim>>();
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
+        profile_ = {};
         cleared_ = true;
     }
 
     DetectStats detect(const PairSink& sink) {
         const Stopwatch whole;
         DetectStats stats;
+        DetectProfile profile;
         PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
         if (filters_.wanted()) [[unlikely]] {
             // The filters compact the store on their own: the other paths' lists are forgotten.
             enter<Filtered>(&filters_);
-            filters_.detect(store_, settings_, settings_.skin, output, stats);
+            filters_.detect(store_, settings_, settings_.skin, output, stats, profile);
         } else if (settings_.pipeline == Pipeline::paper_lists) {
             Paper& paper = enter<Paper>(settings_);
             if (store_.has_removals()) {
                 paper.fold_removals(store_.compact(paper.listed()));
-                stats.update_seconds = whole.seconds();
+                profile.update_seconds = settings_.profile ? whole.seconds() : 0;
             }
             auto report_slots = [&](Slot a, Slot b) { output(store_.id_at(a), store_.id_at(b)); };
-            paper.detect(store_.boxes(), report_slots, stats);
+            paper.detect(store_.boxes(), report_slots, settings_.profile, profile);
         } else {
             Engine& engine = enter<Engine>();
             if (store_.has_removals()) {
                 engine.fold_removals(store_.compact(engine.listed(store_.slot_count())));
-                stats.update_seconds = whole.seconds();
+                profile.update_seconds = settings_.profile ? whole.seconds() : 0;
             }
-            engine.detect({store_.boxes(), store_.ids(), nullptr, true}, settings_, settings_.skin, output, stats);
+            engine.detect({store_.boxes(), store_.ids(), nullptr, true}, settings_, settings_.skin, output, stats,
+                          profile);
         }
         stats.boxes = store_.slot_count();
         output.flush();
-        finish(stats, whole);
+        finish(stats, profile, whole);
         finish_for_events();
         return stats;
     }
@@ -127,8 +132,9 @@ public:
         // before (the compaction, the other paths forgotten) costs speed, not results.
         if (store_.has_removals()) store_.compact(store_.slot_count());
         DetectStats stats;
+        DetectProfile profile;
         if (events == nullptr) {
-            stats = periodic.detect(store_.boxes(), store_.ids(), domain, settings_, pairs, settings_.skin);
+            stats = periodic.detect(store_.boxes(), store_.ids(), domain, settings_, pairs, profile, settings_.skin);
             finish_for_events();
         } else {
             stats = periodic.detect(
@@ -138,9 +144,9 @@ public:
                     if (cleared_before_detect_) events->replace_all();
                     events->update(plain, reinserted_before_detect());
                 },
-                settings_.skin);
+                profile, settings_.skin);
         }
-        finish(stats, whole);
+        finish(stats, profile, whole);
         return stats;
     }
 
@@ -180,10 +186,11 @@ private:
     }
 
     /// What every detection closes with, whichever path it took.
-    void finish(DetectStats& stats, const Stopwatch& whole) {
+    void finish(DetectStats& stats, const DetectProfile& profile, const Stopwatch& whole) {
         stats.bytes_held = bytes_held();
         stats.total_seconds = whole.seconds();
         stats_ = stats;
+        if (settings_.profile) profile_ = profile;
     }
 
     /// For pair events, after a detection that completed: what was removed, or cleared, between
@@ -196,6 +203,7 @@ private:
     WorldSettings settings_;
     BoxStore<Real, Dim> store_;
     DetectStats stats_;
+    DetectProfile profile_;  // all zero unless settings_.profile
     WorldFilters<Real, Dim> filters_;
     Path path_;
     std::vector<Pair> chunk_;

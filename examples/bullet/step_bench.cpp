@@ -102,7 +102,7 @@ public:
     [[nodiscard]] std::string oversized() const {
         const auto* smb_broadphase = dynamic_cast<const smb::bullet::Broadphase*>(inner_.get());
         return smb_broadphase == nullptr ? std::string()
-                                         : std::to_string(smb_broadphase->world().last_stats().oversized_boxes);
+                                         : std::to_string(smb_broadphase->world().last_profile().oversized_boxes);
     }
 
 private:
@@ -131,7 +131,11 @@ private:
 float g_skin = smb::bullet::Broadphase::default_skin;
 
 std::unique_ptr<btBroadphaseInterface> make_broadphase(const std::string& name, std::size_t bodies) {
-    if (name == "smb") return std::make_unique<smb::bullet::Broadphase>(smb::WorldSettings{}, nullptr, g_skin);
+    if (name == "smb") {
+        smb::WorldSettings settings;
+        settings.profile = true;  // for oversized()
+        return std::make_unique<smb::bullet::Broadphase>(settings, nullptr, g_skin);
+    }
     if (name == "dbvt") return std::make_unique<btDbvtBroadphase>();
     // Sweep and prune needs bounds: those of the pile with room to spare.
     const float reach = static_cast<float>(std::sqrt(static_cast<double>(bodies))) * 0.7f + 20.0f;

@@ -16,6 +16,7 @@
 #include "smb/pair.hpp"
 #include "smb/pair_events.hpp"
 #include "smb/periodic.hpp"
+#include "smb/profile.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -121,6 +122,9 @@ public:
     [[nodiscard]] const DetectorSettings& settings() const noexcept;
     /// Statistics of the last detect() call.
     [[nodiscard]] const DetectStats& last_stats() const noexcept;
+    /// The last detect() call's phases and pipeline counts where settings().profile is set;
+    /// all zero otherwise.
+    [[nodiscard]] const DetectProfile& last_profile() const noexcept;
     /// What the last detection held: floats or a copy of the doubles.
     [[nodiscard]] HeldPrecision last_precision() const noexcept;
     /// Pairs the held floats could not settle and that were tested again on the input, in the

@@ -58,6 +58,11 @@ struct DetectionSettings {
     /// (smb::openmp_enabled() is false), every value means one; so does a World with
     /// Pipeline::paper_lists. At most 1024: a larger value is refused with smb::ArgumentError.
     std::size_t threads = 1;
+
+    /// Whether each detection fills a DetectProfile (World::last_profile(),
+    /// Detector::last_profile()): its phases' seconds and the pipelines' counts. Off, the
+    /// default, a detection reads the clock only for DetectStats::total_seconds.
+    bool profile = false;
 };
 
 /// Tuning of a World: the shared DetectionSettings and the choice of pipeline.

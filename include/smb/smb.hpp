@@ -11,6 +11,7 @@
 #include "smb/join.hpp"
 #include "smb/pair.hpp"
 #include "smb/pair_events.hpp"
+#include "smb/profile.hpp"
 #include "smb/query.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"

@@ -18,6 +18,7 @@
 #include "smb/pair.hpp"
 #include "smb/pair_events.hpp"
 #include "smb/periodic.hpp"
+#include "smb/profile.hpp"
 #include "smb/query.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
@@ -169,6 +170,9 @@ public:
 
     /// Statistics of the last detect() call.
     [[nodiscard]] const DetectStats& last_stats() const noexcept;
+    /// The last detect() call's phases and pipeline counts where settings().profile is set;
+    /// all zero otherwise.
+    [[nodiscard]] const DetectProfile& last_profile() const noexcept;
     /// What the last detection held: floats or the doubles themselves (see Precision above).
     [[nodiscard]] HeldPrecision last_precision() const noexcept;
     /// Pairs the held floats could not settle and that were tested again on the stored boxes,

@@ -15,23 +15,14 @@ py::dict stats_dict(const DetectStats& stats) {
     py::dict dict;
     dict["boxes"] = stats.boxes;
     dict["pairs"] = stats.pairs;
-    dict["cells"] = stats.cells;
-    dict["oversized_boxes"] = stats.oversized_boxes;
-    dict["sort_moves"] = stats.sort_moves;
     dict["bytes_held"] = stats.bytes_held;
+    dict["total_seconds"] = stats.total_seconds;
     dict["skin_candidates"] = stats.skin_candidates;
     dict["skin_refreshed"] = stats.skin_refreshed;
     dict["skin_rebuilt"] = stats.skin_rebuilt;
-    dict["update_seconds"] = stats.update_seconds;
-    dict["scan_seconds"] = stats.scan_seconds;
-    dict["containment_seconds"] = stats.containment_seconds;
-    dict["quantile_seconds"] = stats.quantile_seconds;
-    dict["list_sort_seconds"] = stats.list_sort_seconds;
-    dict["cut_regroup_seconds"] = stats.cut_regroup_seconds;
-    dict["check_seconds"] = stats.check_seconds;
-    dict["copy_seconds"] = stats.copy_seconds;
-    dict["level_seconds"] = py::make_tuple(stats.level_seconds[0], stats.level_seconds[1], stats.level_seconds[2]);
-    dict["total_seconds"] = stats.total_seconds;
+    dict["static_contacts"] = stats.static_contacts;
+    dict["static_refreshed"] = stats.static_refreshed;
+    dict["statics_rebuilt"] = stats.statics_rebuilt;
     return dict;
 }
 

@@ -20,8 +20,8 @@
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "smb/box.hpp"
 #include "smb/held_precision.hpp"
+#include "smb/profile.hpp"
 #include "smb/settings.hpp"
-#include "smb/stats.hpp"
 
 namespace smb::detail {
 
@@ -78,23 +78,23 @@ public:
     /// where `ids` is empty) as judge() chose to hold them; `bounds` as judge() had them.
     template <class Report>
     void detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> ids, const SceneBounds<Real, Dim>& bounds,
-                const DetectionSettings& settings, Report& report, DetectStats& stats) {
+                const DetectionSettings& settings, Report& report, DetectProfile& profile) {
         SMB_ASSERT(precision_ != HeldPrecision::none, "judge() chose what to hold");
         retested_ = 0;
         if (uses_rounded()) {
             rounded_.set_scene_bounds(bounds.lo, bounds.hi);
-            rounded_.detect(boxes, ids, settings, report, stats);
+            rounded_.detect(boxes, ids, settings, report, profile);
             if constexpr (kMayRound) retested_ = rounded_.retested();
         } else {
-            exact_.detect(boxes, ids, settings, report, stats);
+            exact_.detect(boxes, ids, settings, report, profile);
         }
     }
 
     /// A detection of no boxes: forgets the cuts, the order and the judgement.
     template <class Report>
-    void detect_nothing(const DetectionSettings& settings, Report& report, DetectStats& stats) {
+    void detect_nothing(const DetectionSettings& settings, Report& report, DetectProfile& profile) {
         clear();
-        exact_.detect(std::span<const Box<Real, Dim>>{}, {}, settings, report, stats);
+        exact_.detect(std::span<const Box<Real, Dim>>{}, {}, settings, report, profile);
     }
 
     /// Boxes from slot `n` on are gone (a Detector's caller passed fewer than last time).

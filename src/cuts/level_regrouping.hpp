@@ -26,7 +26,7 @@
 #include "cuts/cut_tree.hpp"
 #include "cuts/group_locator.hpp"
 #include "smb/box.hpp"
-#include "smb/stats.hpp"
+#include "smb/profile.hpp"
 
 namespace smb::detail {
 
@@ -34,21 +34,22 @@ template <std::floating_point Real, int Dim>
 class LevelRegrouping {
 public:
     /// Regroups the ordered `boxes` level by level on `threads` threads, cutting again the groups
-    /// that left their band; writes each level's seconds to `stats` and returns the seconds spent
-    /// cutting. id_at(position) gives a box's id, which orders oversized boxes of equal min x.
+    /// that left their band; adds each level's seconds to `profile` where `timed`, and returns
+    /// the seconds spent cutting. id_at(position) gives a box's id (oversized boxes' tie-break).
     template <class IdAt>
-    double run(std::span<const Box<Real, Dim>> boxes, CutTree<Real, Dim>& cuts, int threads, IdAt&& id_at,
-               DetectStats& stats) {
+    double run(std::span<const Box<Real, Dim>> boxes, CutTree<Real, Dim>& cuts, int threads, IdAt&& id_at, bool timed,
+               DetectProfile& profile) {
         const std::size_t n = boxes.size();
         threads_ = threads;
         workers_.resize(threads);
         resize_with_slack(oversized_, n);
         std::fill(oversized_.begin(), oversized_.end(), std::uint8_t{0});
         oversized_list_.clear();
-        Stopwatch phase;
+        timed_ = timed;
+        Stopwatch phase{timed};
         double cutting = regroup_first_level(n, cuts, boxes, lists_[0], begin_[0]);
         locator_.judge_hints(0, cuts.segments(), workers_);
-        stats.level_seconds[0] = phase.lap();
+        profile.level_seconds[0] += phase.lap();
         cells_list_ = 0;
         for (int level = 1; level < Dim; ++level) {
             const int source = (level - 1) % 2;
@@ -56,14 +57,14 @@ public:
             if (columns_ && level == Dim - 1) {
                 keep_columns_whole(cuts, lists_[source], begin_[source], lists_[target], begin_[target]);
                 cells_list_ = target;
-                stats.level_seconds[static_cast<std::size_t>(level)] = phase.lap();
+                profile.level_seconds[static_cast<std::size_t>(level)] += phase.lap();
                 continue;
             }
             cutting +=
                 regroup_level(level, cuts, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
             locator_.judge_hints(level, cuts.segments(), workers_);
             cells_list_ = target;
-            stats.level_seconds[static_cast<std::size_t>(level)] = phase.lap();
+            profile.level_seconds[static_cast<std::size_t>(level)] += phase.lap();
         }
         // In x order (ties by id), so that the report and the next order depend on the boxes alone.
         std::sort(oversized_list_.begin(), oversized_list_.end(), [&](Position x, Position y) {
@@ -136,6 +137,7 @@ private:
     GroupLocator<Real, Dim> locator_;
     PerThread<Worker> workers_;
     int threads_ = 1;
+    bool timed_ = true;  // whether the cuts are timed (DetectionSettings::profile)
     bool columns_ = false;
     std::vector<Real> widest_;  // columns: per cell, Cells::widest
 };
@@ -209,7 +211,7 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
     double cutting = 0;
     const std::uint32_t fullest = cuts.was_cut(0, 0) ? locate_shares() : 0;
     if (cuts.needs_cut(0, 0, fullest)) {
-        const Stopwatch cut_watch;
+        const Stopwatch cut_watch{timed_};
         cuts.cut_group(
             0, 0, n, [&](std::size_t i) { return boxes[i].min[axis_of_level(0)]; },
             [&](std::size_t i) { return boxes[i].max[axis_of_level(0)] - boxes[i].min[axis_of_level(0)]; },
@@ -288,7 +290,7 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
                                                                                segment_count, worker, oversized_.data())
                                                              : 0;
         if (cuts.needs_cut(level, g, fullest)) {
-            const Stopwatch cut_watch;
+            const Stopwatch cut_watch{timed_};
             // What the old planes called oversized is judged again against the new ones.
             worker.marks.resize(marked_before);
             // No entry is published oversized (see GroupLocator::locate()): every one takes part.

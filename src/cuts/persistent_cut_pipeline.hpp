@@ -44,8 +44,8 @@
 #include "cuts/level_regrouping.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
+#include "smb/profile.hpp"
 #include "smb/settings.hpp"
-#include "smb/stats.hpp"
 
 namespace smb::detail {
 
@@ -78,7 +78,7 @@ public:
     /// cannot settle is tested again on `input`.
     template <class Report>
     void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const DetectionSettings& settings,
-                Report& report, DetectStats& stats);
+                Report& report, DetectProfile& profile);
 
     /// Whether the next detection sorts the order by column before the copy (column_presort.hpp).
     [[nodiscard]] bool presorting() const noexcept { return presort_.sorting(); }
@@ -178,7 +178,7 @@ template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Report>
 void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids,
                                                      const DetectionSettings& settings, Report& report,
-                                                     DetectStats& stats) {
+                                                     DetectProfile& profile) {
     const std::size_t n = input.size();
     input_ = input;
     retested_ = 0;
@@ -200,32 +200,30 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     // jumped far since the last step are left to the hint's judgement, which counts the misses.
     if (cold) regrouping_.set_without_hint(true);
 
-    const Stopwatch regrouping_watch;
-    const Stopwatch copy_watch;
+    Stopwatch phase{settings.profile};
     const bool presorted = !cold && presort_.sorting();
     if (cold) presort_.forget();
     if (presorted) presort_.sort(input, origin_, cuts_, cell_order_.rewritable_order());
     cell_order_.copy(input, ids, origin_, threads_);
-    stats.copy_seconds = copy_watch.seconds();
+    profile.copy_seconds += phase.seconds();
     const std::span<const Box<Real, Dim>> boxes = cell_order_.boxes();
-    const double cutting = regrouping_.run(
-        boxes, cuts_, threads_, [this](Position position) { return cell_order_.id_at(position); }, stats);
+    auto id_at = [this](Position position) { return cell_order_.id_at(position); };
+    const double cutting = regrouping_.run(boxes, cuts_, threads_, id_at, settings.profile, profile);
     // The misses of a cold order say nothing of the next detection, whose entries will come in
     // this one's cells: it tries the hint, and judges again from its own misses.
     if (cold) regrouping_.set_without_hint(false);
     if (!cold && !presorted) presort_.judge(regrouping_.first_level_misses());
-    stats.quantile_seconds = cutting;
-    stats.cut_regroup_seconds = regrouping_watch.seconds() - cutting;
-    stats.cells = cuts_.cells();
+    profile.quantile_seconds += cutting;
+    profile.cut_regroup_seconds += phase.lap() - cutting;
+    profile.cells += cuts_.cells();
 
-    const Stopwatch check_watch;
     auto confirm = [this](Position a, Position b, bool sure) { return confirmed(a, b, sure); };
     const SweptColumns<Real> columns = regrouping_.swept_columns();
     const CheckedCells<Real, Dim, CellOrder<Real, Dim, Input>, decltype(confirm)> checked{
         regrouping_.cells(cuts_), columns, regrouping_.oversized(), boxes, cell_order_, confirm};
-    stats.sort_moves = checks_.check(checked, sure_margin_, threads_, report, cell_order_.next());
-    stats.oversized_boxes = regrouping_.oversized().size();
-    stats.check_seconds = check_watch.seconds();
+    profile.sort_moves += checks_.check(checked, sure_margin_, threads_, report, cell_order_.next());
+    profile.oversized_boxes += regrouping_.oversized().size();
+    profile.check_seconds += phase.seconds();
 #ifdef SMB_VALIDATE
     regrouping_.cells(cuts_).check_registrations(boxes, regrouping_.oversized_flags());
 #endif

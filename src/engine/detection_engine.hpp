@@ -24,6 +24,7 @@
 #include "smb/box.hpp"
 #include "smb/held_precision.hpp"
 #include "smb/pair.hpp"
+#include "smb/profile.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -52,11 +53,11 @@ public:
     /// when a box of unchecked input is invalid. `skin` > 0 lets the skin list detect.
     template <class Report>
     void detect(const EngineInput<Real, Dim>& input, const DetectionSettings& settings, double skin, Report& report,
-                DetectStats& stats) {
-        const Stopwatch scan;
+                DetectStats& stats, DetectProfile& profile) {
+        const Stopwatch scan{settings.profile};
         skin_detected_ = false;
         if (input.boxes.empty()) {
-            cuts_.detect_nothing(settings, report, stats);
+            cuts_.detect_nothing(settings, report, profile);
             skin_.clear();
             return;
         }
@@ -66,11 +67,11 @@ public:
         else if (!input.valid || HeldCutPipeline<Real, Dim>::kMayRound)
             bounds = checked_bounds(input.boxes);  // throws before any change
         cuts_.judge(input.boxes, bounds);
-        stats.scan_seconds += scan.seconds();
-        skin_detected_ = detected_with_skin(input, bounds, settings, skin, report, stats);
+        profile.scan_seconds += scan.seconds();
+        skin_detected_ = detected_with_skin(input, bounds, settings, skin, report, stats, profile);
         if (!skin_detected_) {
             cuts_.forget_slots_from(input.boxes.size());
-            cuts_.detect(input.boxes, input.keys, bounds, settings, report, stats);
+            cuts_.detect(input.boxes, input.keys, bounds, settings, report, profile);
         }
     }
 
@@ -106,7 +107,8 @@ private:
     /// aside (SkinList::detect()), the cuts detect for tuning::skin_pause detections.
     template <class Report>
     bool detected_with_skin(const EngineInput<Real, Dim>& input, const SceneBounds<Real, Dim>& bounds,
-                            const DetectionSettings& settings, double skin, Report& report, DetectStats& stats) {
+                            const DetectionSettings& settings, double skin, Report& report, DetectStats& stats,
+                            DetectProfile& profile) {
         if (skin == 0 || cuts_.precision() != HeldPrecision::floats) {
             skin_.clear();
             return false;
@@ -115,14 +117,14 @@ private:
             --skin_pause_;
             return false;
         }
-        const bool detected =
-            skin_.detect(input.boxes, input.keys, cuts_.origin(), bounds.lo, bounds.hi, skin, settings, report, stats);
+        const bool detected = skin_.detect(input.boxes, input.keys, cuts_.origin(), bounds.lo, bounds.hi, skin,
+                                           settings, report, stats, profile);
         if (!detected) {
             skin_pause_ = tuning::skin_pause;
             return false;
         }
         // A (re)build is the first skin detection after the cuts' ones.
-        if (stats.skin_rebuilt) cuts_.release();
+        if (skin_.rebuilt()) cuts_.release();
         return true;
     }
 

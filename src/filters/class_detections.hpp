@@ -14,7 +14,6 @@
 #include "core/box_store.hpp"
 #include "engine/detection_engine.hpp"
 #include "filters/class_members.hpp"
-#include "filters/class_stats.hpp"
 #include "filters/filtered_report.hpp"
 #include "filters/interaction_classes.hpp"
 #include "smb/filter.hpp"
@@ -31,13 +30,13 @@ template <std::floating_point Real, int Dim, class Output>
 void detect_gathered(DetectionEngine<Real, Dim>& engine, std::span<const Box<Real, Dim>> boxes,
                      std::span<const BoxId> keys, std::span<const IdFilter> info, bool packed,
                      const DetectionSettings& settings, double skin, Output& output, const PairPredicate* predicate,
-                     DetectStats& stats) {
+                     DetectStats& stats, DetectProfile& profile) {
     if (packed) {
         PackedFilterReport<Output> report(output, predicate);
-        engine.detect({boxes, keys, nullptr, true}, settings, skin, report, stats);
+        engine.detect({boxes, keys, nullptr, true}, settings, skin, report, stats, profile);
     } else {
         FilteredReport<Output> report(output, info, predicate);
-        engine.detect({boxes, {}, nullptr, true}, settings, skin, report, stats);
+        engine.detect({boxes, {}, nullptr, true}, settings, skin, report, stats, profile);
     }
 }
 
@@ -87,16 +86,14 @@ public:
     /// stats of the passes add up over the classes.
     template <class Output>
     void detect(const DetectionSettings& settings, double skin, Output& output, const PairPredicate* predicate,
-                DetectStats& stats) {
+                DetectStats& stats, DetectProfile& profile) {
         for (ClassDetection& c : classes_) {
             if (c.boxes.empty()) {
                 c.engine.clear();
                 continue;
             }
-            DetectStats part;
             detect_gathered<Real, Dim>(c.engine, c.boxes, c.keys, c.info, c.packed, settings, skin, output, predicate,
-                                       part);
-            add_class_stats(stats, part);
+                                       stats, profile);
         }
     }
 

@@ -18,7 +18,6 @@
 #include "core/pair_output.hpp"
 #include "engine/detection_engine.hpp"
 #include "filters/class_members.hpp"
-#include "filters/class_stats.hpp"
 #include "filters/filtered_sink.hpp"
 #include "filters/interaction_classes.hpp"
 #include "smb/box.hpp"
@@ -36,7 +35,7 @@ public:
     /// to `sink`, and adds the classes' work to `stats`; returns false, having detected nothing
     /// and released the classes' detectors, where the filters make fewer than two classes.
     bool detect(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters, const PairSink& sink,
-                const DetectorSettings& settings, DetectStats& stats) {
+                const DetectorSettings& settings, DetectStats& stats, DetectProfile& profile) {
         split_ = false;
         if (filters.filters.empty() || !follow(filters.filters)) {
             clear();
@@ -57,12 +56,11 @@ public:
             if (!part.engine) part.engine = std::make_unique<DetectionEngine<Real, Dim>>();
             FilteredSink filtered(filters, sink, settings.pair_chunk_size, members, !classes_.all_pass_within(c));
             const PairSink filtered_sink(std::ref(filtered));
-            DetectStats own;
-            PairOutput output{chunk_, settings.pair_chunk_size, filtered_sink, own.pairs};
-            part.engine->detect({part.boxes, {}, nullptr, true}, settings, settings.skin, output, own);
+            std::size_t passed = 0;  // FilteredSink counts the pairs that pass the filters
+            PairOutput output{chunk_, settings.pair_chunk_size, filtered_sink, passed};
+            part.engine->detect({part.boxes, {}, nullptr, true}, settings, settings.skin, output, stats, profile);
             output.flush();
             reported += filtered.finish();
-            add_class_stats(stats, own);
         }
         stats.pairs = reported;
         return true;

@@ -140,8 +140,8 @@ public:
     /// The filtered detection: compacts the store (the caller's pipelines were told to forget
     /// it when this path engaged), then reports every pair that passes; `skin` as the engine's.
     void detect(BoxStore<Real, Dim>& store, const DetectionSettings& settings, double skin, PairOutput& output,
-                DetectStats& stats) {
-        const Stopwatch update;
+                DetectStats& stats, DetectProfile& profile) {
+        const Stopwatch update{settings.profile};
         if (!engaged_) {
             engaged_ = true;
             known_ = 0;  // every slot is new to this path
@@ -165,20 +165,19 @@ public:
         if (classes_stale_ || (classes_.overflowed() && ++since_classes_ >= tuning::filter_classes_every))
             rebuild_classes();
         gather(store);
-        stats.update_seconds = update.seconds();
+        profile.update_seconds = update.seconds();
         stats.boxes = store.slot_count();
 
         const PairPredicate* predicate = predicate_ ? &predicate_ : nullptr;
         if (split())
-            class_detections_.detect(settings, skin, output, predicate, stats);
+            class_detections_.detect(settings, skin, output, predicate, stats, profile);
         else
             detect_gathered<Real, Dim>(engine_, gathered_, gathered_keys_, gathered_info_, packed_, settings, skin,
-                                       output, predicate, stats);
+                                       output, predicate, stats, profile);
         contacts_.detect(gathered_, gathered_info_, grid_, predicate, output);
-        if (skin > 0) return;  // the skin's own figures stand in the stats
-        stats.skin_rebuilt = statics_rebuilt;
-        stats.skin_refreshed = contacts_.refreshed();
-        stats.skin_candidates = contacts_.cached();
+        stats.statics_rebuilt = statics_rebuilt;
+        stats.static_refreshed = contacts_.refreshed();
+        stats.static_contacts = contacts_.cached();
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {

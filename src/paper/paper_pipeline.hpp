@@ -33,8 +33,8 @@
 #include "paper/shell_sort.hpp"
 #include "paper/singular_regroup.hpp"
 #include "smb/held_precision.hpp"
+#include "smb/profile.hpp"
 #include "smb/settings.hpp"
-#include "smb/stats.hpp"
 
 namespace smb::detail {
 
@@ -58,9 +58,9 @@ public:
     [[nodiscard]] static std::size_t retested() noexcept { return 0; }
 
     /// Reports every overlapping pair of `boxes` (valid; slot s of a BoxStore at index s) as
-    /// report(slot_a, slot_b).
+    /// report(slot_a, slot_b); times its phases where `timed`.
     template <class Report>
-    void detect(std::span<const Box<Real, Dim>> boxes, Report& report, DetectStats& stats);
+    void detect(std::span<const Box<Real, Dim>> boxes, Report& report, bool timed, DetectProfile& profile);
 
     [[nodiscard]] std::size_t bytes_held() const noexcept;
 
@@ -115,14 +115,15 @@ private:
 
 template <std::floating_point Real, int Dim>
 template <class Report>
-void PaperPipeline<Real, Dim>::detect(std::span<const Box<Real, Dim>> boxes, Report& report, DetectStats& stats) {
+void PaperPipeline<Real, Dim>::detect(std::span<const Box<Real, Dim>> boxes, Report& report, bool timed,
+                                      DetectProfile& profile) {
     boxes_ = boxes;
     const std::size_t n = boxes_.size();
     if (n > 0) {
         choose_cuts();
         const std::array<Real, Dim> shortest = shortest_segments<Real, Dim>(segment_rule_, boxes_);
         fit_capacity(segment_of_, n << Dim);  // the deepest level's length: the longest
-        Stopwatch phase;
+        Stopwatch phase{timed};
         double sorting = 0;
         for (int depth = 0; depth < Dim; ++depth) {
             Level& level = levels_[depth];
@@ -148,19 +149,19 @@ void PaperPipeline<Real, Dim>::detect(std::span<const Box<Real, Dim>> boxes, Rep
                 }
                 regroup_by_parent_segment<Real>(level.list, level.section_begin, arrivals_, segment_of_,
                                                 section_scratch_, regroup_);
-                stats.level_singular_items[static_cast<std::size_t>(depth)] =
+                profile.level_singular_items[static_cast<std::size_t>(depth)] =
                     regroup_.singular.size() - arrivals_.size();
                 level.section_begin.swap(section_scratch_);
             }
             SMB_ASSERT(level.list.size() == (n << (depth + 1)), "a list lost or gained items");
-            const Stopwatch sort_watch;
+            const Stopwatch sort_watch{timed};
             const DisWork work = level.sort();
             sorting += sort_watch.seconds();
             level.dis.learn(work);
-            stats.sort_moves += work.moves();
-            stats.level_sort_moves[static_cast<std::size_t>(depth)] = work.moves();
-            stats.level_sort_comparisons[static_cast<std::size_t>(depth)] = work.comparisons;
-            stats.level_sort_fallback_items[static_cast<std::size_t>(depth)] = work.fallback_items;
+            profile.sort_moves += work.moves();
+            profile.level_sort_moves[static_cast<std::size_t>(depth)] = work.moves();
+            profile.level_sort_comparisons[static_cast<std::size_t>(depth)] = work.comparisons;
+            profile.level_sort_fallback_items[static_cast<std::size_t>(depth)] = work.fallback_items;
             level.cut(cuts_, segment_of_, shortest[static_cast<std::size_t>(depth)]);
             if (depth == 0) oversized_.assign(n, 0);
             mark_oversized(depth);
@@ -169,16 +170,16 @@ void PaperPipeline<Real, Dim>::detect(std::span<const Box<Real, Dim>> boxes, Rep
         release_oversized_scratch();
         oversized_count_ = static_cast<std::size_t>(std::count(oversized_.begin(), oversized_.end(), 1));
         build_cell_lists();
-        stats.list_sort_seconds = sorting;
-        stats.cut_regroup_seconds = phase.lap() - sorting;
-        stats.cells = levels_[Dim - 1].segment_begin.size() - 1;
-        stats.oversized_boxes = oversized_count_;
+        profile.list_sort_seconds = sorting;
+        profile.cut_regroup_seconds = phase.lap() - sorting;
+        profile.cells = levels_[Dim - 1].segment_begin.size() - 1;
+        profile.oversized_boxes = oversized_count_;
 
-        stats.largest_cell_boxes = check_cells(report);
+        profile.largest_cell_boxes = check_cells(report);
         if (oversized_count_ > 0) {
             oversized_sweep_.run(levels_[0].list, oversized_, boxes_, report);
         }
-        stats.check_seconds = phase.seconds();
+        profile.check_seconds = phase.seconds();
 #ifdef SMB_VALIDATE
         check_invariants();
 #endif

@@ -27,6 +27,7 @@
 #include "periodic/periodic_report.hpp"
 #include "smb/pair.hpp"
 #include "smb/periodic.hpp"
+#include "smb/profile.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -41,22 +42,19 @@ public:
     /// before and the pipeline is as it was.
     DetectStats detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> names,
                        const PeriodicDomain<Real, Dim>& domain, const DetectionSettings& settings,
-                       std::vector<PeriodicPair>& pairs, double skin = 0) {
-        const Stopwatch whole;
+                       std::vector<PeriodicPair>& pairs, DetectProfile& profile, double skin = 0) {
+        const Stopwatch update{settings.profile};
         DetectStats stats;
         stats.boxes = boxes.size();
-        const Stopwatch update;
         images_.build(boxes, names, domain);
-        stats.update_seconds = update.seconds();
+        profile.update_seconds = update.seconds();
         replace_on_success(pairs, [&] {
             PeriodicReport<Real, Dim> report(images_, boxes, names, domain, pairs, settings.max_pairs_held);
-            engine_.detect({images_.gathered(), images_.keys(), &images_.bounds(), true}, settings, skin, report,
-                           stats);
+            engine_.detect({images_.gathered(), images_.keys(), &images_.bounds(), true}, settings, skin, report, stats,
+                           profile);
             return true;
         });
         stats.pairs = pairs.size();
-        stats.bytes_held = bytes_held();
-        stats.total_seconds = whole.seconds();
         return stats;
     }
 
@@ -65,9 +63,10 @@ public:
     template <class UpdateEvents>
     DetectStats detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> names,
                        const PeriodicDomain<Real, Dim>& domain, const DetectionSettings& settings,
-                       std::vector<PeriodicPair>& pairs, UpdateEvents&& update_events, double skin = 0) {
+                       std::vector<PeriodicPair>& pairs, UpdateEvents&& update_events, DetectProfile& profile,
+                       double skin = 0) {
         scratch_.clear();
-        const DetectStats stats = detect(boxes, names, domain, settings, scratch_, skin);
+        const DetectStats stats = detect(boxes, names, domain, settings, scratch_, profile, skin);
         plain_.resize(scratch_.size());
         for (std::size_t i = 0; i < scratch_.size(); ++i) plain_[i] = Pair{scratch_[i].a, scratch_[i].b};
         update_events(std::span<const Pair>(plain_));

@@ -43,6 +43,7 @@
 #include "skin/held_overlap.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
+#include "smb/profile.hpp"
 #include "smb/settings.hpp"
 #include "smb/stats.hpp"
 
@@ -64,7 +65,7 @@ public:
     bool detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> keys,
                 const std::array<Input, Dim>& origin, const std::array<Input, Dim>& scene_lo,
                 const std::array<Input, Dim>& scene_hi, double skin, const DetectionSettings& settings, Report& report,
-                DetectStats& stats) {
+                DetectStats& stats, DetectProfile& profile) {
         input_ = input;
         keys_ = keys;
         threads_ = thread_count(settings);
@@ -80,7 +81,7 @@ public:
         const bool stale =
             !built_ || origin != origin_ || skin != skin_ || 4 * n > 5 * rebuilt_boxes_ || 5 * n < 4 * rebuilt_boxes_;
         try {
-            const Outcome outcome = stale ? Outcome::rebuild : step(report, stats);
+            const Outcome outcome = stale ? Outcome::rebuild : step(report, settings.profile, profile);
             if (outcome == Outcome::hopeless) {
                 clear();
                 return false;
@@ -88,7 +89,7 @@ public:
             if (outcome == Outcome::rebuild) {
                 origin_ = origin;
                 skin_ = skin;
-                if (!rebuild(settings, stats)) return false;
+                if (!rebuild(settings, profile)) return false;
                 test_candidates(report, false);
             }
         } catch (...) {
@@ -98,9 +99,9 @@ public:
             throw;
         }
         if (candidates_.size() > candidate_cap(n)) built_ = false;  // let the next rebuild judge
-        stats.skin_candidates = candidates_.live();
-        stats.skin_refreshed = refreshed_;
-        stats.skin_rebuilt = rebuilt_;
+        stats.skin_candidates += candidates_.live();
+        stats.skin_refreshed += refreshed_;
+        stats.skin_rebuilt = stats.skin_rebuilt || rebuilt_;
         if (lives_.short_again(rebuilt_)) {
             clear();
             exhausted_ = true;
@@ -110,6 +111,7 @@ public:
 
     /// Pairs the held floats could not settle, tested again on the input, in the last detection.
     [[nodiscard]] std::size_t retested() const noexcept { return retested_; }
+    [[nodiscard]] bool rebuilt() const noexcept { return rebuilt_; }  // the last detection rebuilt
 
     /// The live candidates of the last detection as pairs of the caller's indices, a < b, in
     /// the order of the list (smb/candidate_pairs.hpp).
@@ -144,7 +146,7 @@ private:
     static constexpr bool kExact = std::same_as<Input, float>;  // held boxes are the input's own
 
     /// The pipeline's pairs of fat boxes become the candidates; positions follow its new order.
-    bool rebuild(const DetectionSettings& settings, DetectStats& stats) {
+    bool rebuild(const DetectionSettings& settings, DetectProfile& profile) {
         rebuilt_ = true;
         const std::size_t n = input_.size();
         // held_ serves as the fat boxes by slot until the positions are known.
@@ -154,7 +156,7 @@ private:
         cells_.forget_slots_from(n);
         typename Candidates::Collector collect = candidates_.rebuild(candidate_cap(n));
         try {
-            cells_.detect(std::span<const Held>(held_.data(), n), {}, settings, collect, stats);
+            cells_.detect(std::span<const Held>(held_.data(), n), {}, settings, collect, profile);
         } catch (const typename Candidates::TooManyCandidates&) {
             clear();
             return false;
@@ -198,8 +200,8 @@ private:
     /// One detection on the kept candidates; before reporting anything, rebuild when the moved
     /// list would outgrow its limit, hopeless when a quarter of the boxes left their fat boxes.
     template <class Report>
-    Outcome step(Report& report, DetectStats& stats) {
-        Stopwatch phase;
+    Outcome step(Report& report, bool timed, DetectProfile& profile) {
+        Stopwatch phase{timed};
         const std::size_t n = input_.size();
         const std::size_t known = position_of_.size();
         // Each thread scans a contiguous share of the positions; their lists, joined in thread
@@ -260,14 +262,14 @@ private:
         resize_with_slack(dirty_, (slot_of_.size() + 63) / 64);
         for (const Position p : fresh_) dirty_[p >> 6] |= std::uint64_t{1} << (p & 63);
         for (const Position p : gone_) dirty_[p >> 6] |= std::uint64_t{1} << (p & 63);
-        stats.containment_seconds += phase.lap();
+        profile.containment_seconds += phase.lap();
 
         test_candidates(report, !fresh_.empty() || newly_gone);
         for (const Position p : fresh_) find_candidates_of(p, report);
         for (const Position p : fresh_) state_[p] &= static_cast<std::uint8_t>(~(kFresh | kDone));
         for (const Position p : fresh_) dirty_[p >> 6] = 0;
         for (const Position p : gone_) dirty_[p >> 6] = 0;
-        stats.check_seconds = phase.seconds();
+        profile.check_seconds += phase.seconds();
         return Outcome::kept;
     }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// DetectStats: each phase field means one thing in every pipeline, and is zero where the
-// pipeline has no such phase (smb/stats.hpp).
+// DetectStats: a few fields, each meaning one thing on every path (smb/stats.hpp). DetectProfile:
+// filled only where DetectionSettings::profile asks for it; each phase field means one thing in
+// every pipeline, and is zero where the pipeline has no such phase (smb/profile.hpp).
 
 #include <gtest/gtest.h>
 
@@ -23,29 +24,141 @@ std::vector<Box3d> random_scene(std::size_t n, unsigned seed) {
     return boxes;
 }
 
-double phases(const DetectStats& stats) {
-    return stats.update_seconds + stats.scan_seconds + stats.containment_seconds + stats.quantile_seconds +
-           stats.list_sort_seconds + stats.cut_regroup_seconds + stats.check_seconds;
+void shift_all(std::vector<Box3d>& boxes, double by) {
+    for (Box3d& box : boxes) {
+        box.min[0] += by;
+        box.max[0] += by;
+    }
 }
 
-/// A world's build, then a step that removed boxes.
-std::pair<DetectStats, DetectStats> world_build_and_removal(Pipeline pipeline) {
+/// Every field of a profile, as one sum: zero only where all are.
+double profile_sum(const DetectProfile& p) {
+    double sum = p.update_seconds + p.scan_seconds + p.containment_seconds + p.quantile_seconds + p.list_sort_seconds +
+                 p.cut_regroup_seconds + p.check_seconds + p.copy_seconds +
+                 static_cast<double>(p.cells + p.oversized_boxes + p.sort_moves + p.largest_cell_boxes);
+    for (std::size_t l = 0; l < 3; ++l) {
+        sum += p.level_seconds[l] + static_cast<double>(p.level_sort_moves[l] + p.level_sort_comparisons[l] +
+                                                        p.level_singular_items[l] + p.level_sort_fallback_items[l]);
+    }
+    return sum;
+}
+
+double phases(const DetectProfile& profile) {
+    return profile.update_seconds + profile.scan_seconds + profile.containment_seconds + profile.quantile_seconds +
+           profile.list_sort_seconds + profile.cut_regroup_seconds + profile.check_seconds;
+}
+
+/// A profiled world's build, then a step that removed boxes: each one's total seconds and profile.
+struct Profiled {
+    double total_seconds;
+    DetectProfile profile;
+};
+std::pair<Profiled, Profiled> world_build_and_removal(Pipeline pipeline) {
     WorldSettings settings;
     settings.pipeline = pipeline;
+    settings.profile = true;
     World3d world(settings);
     const std::vector<Box3d> boxes = random_scene(20000, 1);
     world.assign(boxes);
     std::vector<Pair> pairs;
-    const DetectStats build = world.detect(pairs);
+    const Profiled build{world.detect(pairs).total_seconds, world.last_profile()};
     std::vector<BoxId> doomed;
     for (BoxId id = 0; id < 2000; ++id) doomed.push_back(id * 7);
     world.remove(doomed);
-    const DetectStats step = world.detect(pairs);
+    const Profiled step{world.detect(pairs).total_seconds, world.last_profile()};
     return {build, step};
 }
 
-TEST(DetectStats, PersistentCutsSelectQuantilesAndSortNoLists) {
-    const auto [build, step] = world_build_and_removal(Pipeline::persistent_cuts);
+// Without DetectionSettings::profile the profile stays zero on every path; the stats are there.
+TEST(DetectStats, ProfileIsZeroUnlessAsked) {
+    const std::vector<Box3d> boxes = random_scene(5000, 5);
+    std::vector<Pair> pairs;
+    for (const Pipeline pipeline : {Pipeline::persistent_cuts, Pipeline::paper_lists}) {
+        WorldSettings settings;
+        settings.pipeline = pipeline;
+        World3d world(settings);
+        world.assign(boxes);
+        for (int step = 0; step < 2; ++step) {
+            const DetectStats stats = world.detect(pairs);
+            EXPECT_EQ(stats.boxes, boxes.size());
+            EXPECT_EQ(stats.pairs, pairs.size());
+            EXPECT_GT(stats.pairs, 0U);
+            EXPECT_EQ(stats.bytes_held, world.bytes_held());
+            EXPECT_GT(stats.total_seconds, 0.0);
+            EXPECT_EQ(profile_sum(world.last_profile()), 0.0);
+        }
+    }
+    for (const double skin : {0.0, 0.1}) {
+        DetectorSettings settings;
+        settings.skin = skin;
+        Detector3d detector(settings);
+        std::vector<Box3d> moving = boxes;
+        for (int step = 0; step < 2; ++step) {
+            const DetectStats stats = detector.detect(moving, pairs);
+            EXPECT_EQ(stats.pairs, pairs.size());
+            EXPECT_EQ(stats.bytes_held, detector.bytes_held());
+            EXPECT_EQ(profile_sum(detector.last_profile()), 0.0);
+            shift_all(moving, 0.01);
+        }
+    }
+    // Asked for, the same detection fills it; clear() forgets it.
+    DetectorSettings settings;
+    settings.profile = true;
+    Detector3d detector(settings);
+    detector.detect(boxes, pairs);
+    EXPECT_GT(detector.last_profile().check_seconds, 0.0);
+    EXPECT_GT(detector.last_profile().cells, 0U);
+    detector.clear();
+    EXPECT_EQ(profile_sum(detector.last_profile()), 0.0);
+}
+
+// The skin's fields are the skin's alone, the statics' fields the statics' alone, whichever
+// other part the detection also ran.
+TEST(DetectStats, SkinAndStaticsEachHaveTheirOwnFields) {
+    const std::vector<Box3d> boxes = random_scene(5000, 6);
+    for (const bool statics : {false, true}) {
+        for (const double skin : {0.0, 0.1}) {
+            SCOPED_TRACE(::testing::Message() << "statics " << statics << ", skin " << skin);
+            WorldSettings settings;
+            settings.skin = skin;
+            World3d world(settings);
+            world.assign(boxes);
+            if (statics) {
+                for (BoxId id = 0; id < 500; ++id) world.set_static(id, true);
+            }
+            std::vector<Box3d> moving = boxes;
+            std::vector<Pair> pairs;
+            for (int step = 0; step < 3; ++step) {
+                const DetectStats stats = world.detect(pairs);
+                EXPECT_EQ(stats.pairs, pairs.size());
+                if (skin > 0) {
+                    EXPECT_GT(stats.skin_candidates, 0U);
+                    EXPECT_EQ(stats.skin_rebuilt, step == 0);
+                } else {
+                    EXPECT_EQ(stats.skin_candidates + stats.skin_refreshed, 0U);
+                    EXPECT_FALSE(stats.skin_rebuilt);
+                }
+                if (statics) {
+                    EXPECT_GT(stats.static_contacts, 0U);
+                    EXPECT_EQ(stats.statics_rebuilt, step == 0);
+                    if (step == 0) {
+                        EXPECT_EQ(stats.static_refreshed, boxes.size() - 500) << "every box arrived";
+                    }
+                } else {
+                    EXPECT_EQ(stats.static_contacts + stats.static_refreshed, 0U);
+                    EXPECT_FALSE(stats.statics_rebuilt);
+                }
+                shift_all(moving, 0.01);
+                for (BoxId id = 500; id < moving.size(); ++id) world.update(id, moving[id]);
+            }
+        }
+    }
+}
+
+TEST(DetectProfile, PersistentCutsSelectQuantilesAndSortNoLists) {
+    const auto [built, stepped] = world_build_and_removal(Pipeline::persistent_cuts);
+    const DetectProfile& build = built.profile;
+    const DetectProfile& step = stepped.profile;
     EXPECT_GT(build.quantile_seconds, 0.0) << "the first detection cuts every group";
     EXPECT_GT(build.scan_seconds, 0.0);
     EXPECT_EQ(build.list_sort_seconds, 0.0);
@@ -53,29 +166,32 @@ TEST(DetectStats, PersistentCutsSelectQuantilesAndSortNoLists) {
     EXPECT_EQ(build.containment_seconds, 0.0);
     EXPECT_GT(step.update_seconds, 0.0) << "the removals are taken out";
     EXPECT_EQ(step.list_sort_seconds, 0.0);
-    for (const DetectStats& stats : {build, step}) EXPECT_LE(phases(stats), stats.total_seconds);
+    for (const Profiled& p : {built, stepped}) EXPECT_LE(phases(p.profile), p.total_seconds);
 }
 
-TEST(DetectStats, PaperListsSortListsAndSelectNoQuantiles) {
-    const auto [build, step] = world_build_and_removal(Pipeline::paper_lists);
+TEST(DetectProfile, PaperListsSortListsAndSelectNoQuantiles) {
+    const auto [built, stepped] = world_build_and_removal(Pipeline::paper_lists);
+    const DetectProfile& build = built.profile;
+    const DetectProfile& step = stepped.profile;
     EXPECT_GT(build.list_sort_seconds, 0.0);
     EXPECT_GT(step.list_sort_seconds, 0.0);
     EXPECT_GT(step.update_seconds, 0.0);
-    for (const DetectStats& stats : {build, step}) {
-        EXPECT_EQ(stats.quantile_seconds, 0.0);
-        EXPECT_EQ(stats.scan_seconds, 0.0) << "the paper's lists hold the boxes as they are";
-        EXPECT_EQ(stats.containment_seconds, 0.0);
-        EXPECT_EQ(stats.copy_seconds, 0.0);
-        EXPECT_LE(phases(stats), stats.total_seconds);
+    for (const Profiled& p : {built, stepped}) {
+        EXPECT_EQ(p.profile.quantile_seconds, 0.0);
+        EXPECT_EQ(p.profile.scan_seconds, 0.0) << "the paper's lists hold the boxes as they are";
+        EXPECT_EQ(p.profile.containment_seconds, 0.0);
+        EXPECT_EQ(p.profile.copy_seconds, 0.0);
+        EXPECT_LE(phases(p.profile), p.total_seconds);
     }
 }
 
 // The counts of the paper's lists, level by level: what each level's sort moved and compared,
 // which items the regrouping moved to another section; the persistent cuts leave them zero.
-TEST(DetectStats, PaperListsCountEachLevelsWork) {
+TEST(DetectProfile, PaperListsCountEachLevelsWork) {
     for (const Pipeline pipeline : {Pipeline::paper_lists, Pipeline::persistent_cuts}) {
         WorldSettings settings;
         settings.pipeline = pipeline;
+        settings.profile = true;
         World3d world(settings);
         std::vector<Box3d> boxes = random_scene(20000, 3);
         world.assign(boxes);
@@ -91,7 +207,8 @@ TEST(DetectStats, PaperListsCountEachLevelsWork) {
             }
         }
         world.assign(boxes);
-        const DetectStats step = world.detect(pairs);
+        world.detect(pairs);
+        const DetectProfile step = world.last_profile();
         if (pipeline == Pipeline::persistent_cuts) {
             for (int level = 0; level < 3; ++level) {
                 EXPECT_EQ(step.level_sort_moves[level] + step.level_sort_comparisons[level] +
@@ -116,33 +233,32 @@ TEST(DetectStats, PaperListsCountEachLevelsWork) {
     }
 }
 
-TEST(DetectStats, DetectorScansItsInputAndHasNoUpdates) {
+TEST(DetectProfile, DetectorScansItsInputAndHasNoUpdates) {
     for (const double skin : {0.0, 0.1}) {
         DetectorSettings settings;
         settings.skin = skin;
+        settings.profile = true;
         Detector3d detector(settings);
         std::vector<Box3d> boxes = random_scene(20000, 2);
         std::vector<Pair> pairs;
-        const DetectStats build = detector.detect(boxes, pairs);
-        for (Box3d& box : boxes) {
-            box.min[0] += 0.01;
-            box.max[0] += 0.01;
-        }
-        const DetectStats step = detector.detect(boxes, pairs);
+        const Profiled build{detector.detect(boxes, pairs).total_seconds, detector.last_profile()};
+        shift_all(boxes, 0.01);
+        const DetectStats step_stats = detector.detect(boxes, pairs);
+        const Profiled step{step_stats.total_seconds, detector.last_profile()};
         SCOPED_TRACE(::testing::Message() << "skin " << skin);
-        EXPECT_GT(build.quantile_seconds, 0.0);
-        for (const DetectStats& stats : {build, step}) {
-            EXPECT_EQ(stats.update_seconds, 0.0);
-            EXPECT_GT(stats.scan_seconds, 0.0);
-            EXPECT_EQ(stats.list_sort_seconds, 0.0);
-            EXPECT_LE(phases(stats), stats.total_seconds);
+        EXPECT_GT(build.profile.quantile_seconds, 0.0);
+        for (const Profiled& p : {build, step}) {
+            EXPECT_EQ(p.profile.update_seconds, 0.0);
+            EXPECT_GT(p.profile.scan_seconds, 0.0);
+            EXPECT_EQ(p.profile.list_sort_seconds, 0.0);
+            EXPECT_LE(phases(p.profile), p.total_seconds);
         }
         // With a skin, the step after the build checks every box against its fat box.
         if (skin > 0) {
-            EXPECT_FALSE(step.skin_rebuilt);
-            EXPECT_GT(step.containment_seconds, 0.0);
+            EXPECT_FALSE(step_stats.skin_rebuilt);
+            EXPECT_GT(step.profile.containment_seconds, 0.0);
         } else {
-            EXPECT_EQ(step.containment_seconds, 0.0);
+            EXPECT_EQ(step.profile.containment_seconds, 0.0);
         }
     }
 }

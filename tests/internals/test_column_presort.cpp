@@ -18,7 +18,7 @@
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "reference/brute_force.hpp"
 #include "smb/settings.hpp"
-#include "smb/stats.hpp"
+#include "smb/profile.hpp"
 
 namespace smb::detail {
 namespace {
@@ -115,8 +115,8 @@ std::vector<Pair> detected(PersistentCutPipeline<float, Dim>& pipeline, std::spa
     std::size_t count = 0;
     const PairSink sink([&](std::span<const Pair> run) { pairs.insert(pairs.end(), run.begin(), run.end()); });
     PairOutput output(chunk, 4096, sink, count);
-    DetectStats stats;
-    pipeline.detect(boxes, {}, DetectionSettings{}, output, stats);
+    DetectProfile profile;
+    pipeline.detect(boxes, {}, DetectionSettings{}, output, profile);
     output.flush();
     std::sort(pairs.begin(), pairs.end());
     return pairs;

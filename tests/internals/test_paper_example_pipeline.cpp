@@ -117,8 +117,8 @@ protected:
     std::vector<Pair> detect() {
         std::vector<Pair> pairs;
         auto report = [&](Slot a, Slot b) { pairs.push_back({a, b}); };
-        DetectStats stats;
-        pipeline_.detect(store_.boxes(), report, stats);
+        DetectProfile profile;
+        pipeline_.detect(store_.boxes(), report, true, profile);
         return sorted_pairs(pairs);
     }
 

@@ -77,7 +77,7 @@ TEST(CliGenerate, ImpossibleParametersFailCleanly) {
     EXPECT_EQ(folder.entry_count(), 0u);
 }
 
-/// The phases of smb::DetectStats, each under its field's name without "_seconds".
+/// The phases of smb::DetectProfile, each under its field's name without "_seconds".
 const std::vector<std::string> kPhaseKeys{"check",    "containment", "cut_regroup", "list_sort",
                                           "quantile", "scan",        "update"};
 

@@ -141,6 +141,7 @@ int RunCommand::run_in() const {
     settings.pipeline = pipeline_ == "paper" ? Pipeline::paper_lists : Pipeline::persistent_cuts;
     settings.segment_rule = segment_rule_ == "paper" ? SegmentRule::twice_largest_box : SegmentRule::from_count;
     settings.skin = skin_;
+    settings.profile = true;  // the summary prints the phases
     World<double, Dim> world(settings);
     // The detector reads an array in which each body keeps its index (as an array-based
     // simulation's would: smb/workload/swap_remove_mirror.hpp); keeping it up is the update's time. Its pairs
@@ -187,6 +188,7 @@ int RunCommand::run_in() const {
         record.stats = through_detector ? detector.detect(mirror.boxes(), pairs) : world.detect(pairs);
         record.detect_cpu_seconds = static_cast<double>(std::clock() - cpu_start) / static_cast<double>(CLOCKS_PER_SEC);
         record.detect_seconds = seconds_since(start);
+        record.profile = through_detector ? detector.last_profile() : world.last_profile();
         run.steps.push_back(record);
 
         const bool scheduled = check_every_ > 0 && step % check_every_ == 0;

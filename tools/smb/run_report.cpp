@@ -65,27 +65,27 @@ const StepQuantity detect_cpu_time = [](const StepRecord& s) { return s.detect_c
 const StepQuantity world_update_time = [](const StepRecord& s) { return s.world_update_seconds; };
 const StepQuantity pair_count = [](const StepRecord& s) { return static_cast<double>(s.stats.pairs); };
 const StepQuantity box_count = [](const StepRecord& s) { return static_cast<double>(s.stats.boxes); };
-const StepQuantity update_time = [](const StepRecord& s) { return s.stats.update_seconds; };
-const StepQuantity scan_time = [](const StepRecord& s) { return s.stats.scan_seconds; };
-const StepQuantity containment_time = [](const StepRecord& s) { return s.stats.containment_seconds; };
-const StepQuantity quantile_time = [](const StepRecord& s) { return s.stats.quantile_seconds; };
-const StepQuantity list_sort_time = [](const StepRecord& s) { return s.stats.list_sort_seconds; };
-const StepQuantity cut_time = [](const StepRecord& s) { return s.stats.cut_regroup_seconds; };
-const StepQuantity check_time = [](const StepRecord& s) { return s.stats.check_seconds; };
+const StepQuantity update_time = [](const StepRecord& s) { return s.profile.update_seconds; };
+const StepQuantity scan_time = [](const StepRecord& s) { return s.profile.scan_seconds; };
+const StepQuantity containment_time = [](const StepRecord& s) { return s.profile.containment_seconds; };
+const StepQuantity quantile_time = [](const StepRecord& s) { return s.profile.quantile_seconds; };
+const StepQuantity list_sort_time = [](const StepRecord& s) { return s.profile.list_sort_seconds; };
+const StepQuantity cut_time = [](const StepRecord& s) { return s.profile.cut_regroup_seconds; };
+const StepQuantity check_time = [](const StepRecord& s) { return s.profile.check_seconds; };
 const StepQuantity skin_candidates = [](const StepRecord& s) { return static_cast<double>(s.stats.skin_candidates); };
 const StepQuantity skin_refreshed = [](const StepRecord& s) { return static_cast<double>(s.stats.skin_refreshed); };
-const StepQuantity copy_time = [](const StepRecord& s) { return s.stats.copy_seconds; };
+const StepQuantity copy_time = [](const StepRecord& s) { return s.profile.copy_seconds; };
 StepQuantity level_time(std::size_t level) {
-    return [level](const StepRecord& s) { return s.stats.level_seconds[level]; };
+    return [level](const StepRecord& s) { return s.profile.level_seconds[level]; };
 }
-const StepQuantity cell_count = [](const StepRecord& s) { return static_cast<double>(s.stats.cells); };
-const StepQuantity sort_move_count = [](const StepRecord& s) { return static_cast<double>(s.stats.sort_moves); };
-const StepQuantity largest_cell = [](const StepRecord& s) { return static_cast<double>(s.stats.largest_cell_boxes); };
-/// One of DetectStats' per-level counts of the paper's lists, on level `level`.
-StepQuantity level_count(std::array<std::size_t, 3> DetectStats::*counts, std::size_t level) {
-    return [counts, level](const StepRecord& s) { return static_cast<double>((s.stats.*counts)[level]); };
+const StepQuantity cell_count = [](const StepRecord& s) { return static_cast<double>(s.profile.cells); };
+const StepQuantity sort_move_count = [](const StepRecord& s) { return static_cast<double>(s.profile.sort_moves); };
+const StepQuantity largest_cell = [](const StepRecord& s) { return static_cast<double>(s.profile.largest_cell_boxes); };
+/// One of DetectProfile's per-level counts of the paper's lists, on level `level`.
+StepQuantity level_count(std::array<std::size_t, 3> DetectProfile::*counts, std::size_t level) {
+    return [counts, level](const StepRecord& s) { return static_cast<double>((s.profile.*counts)[level]); };
 }
-/// A phase of DetectStats: its key in --json (the field's name without "_seconds"), its label in
+/// A phase of DetectProfile: its key in --json (the field's name without "_seconds"), its label in
 /// the text summary, and its time.
 struct Phase {
     const char* key;
@@ -293,12 +293,13 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
             json levels = json::object();
             for (std::size_t level = 0; level < static_cast<std::size_t>(run.dimension); ++level) {
                 levels[std::string(1, level_axis(run.dimension, level))] = {
-                    {"sort_moves", median_after_build(run, level_count(&DetectStats::level_sort_moves, level))},
+                    {"sort_moves", median_after_build(run, level_count(&DetectProfile::level_sort_moves, level))},
                     {"sort_comparisons",
-                     median_after_build(run, level_count(&DetectStats::level_sort_comparisons, level))},
-                    {"singular_items", median_after_build(run, level_count(&DetectStats::level_singular_items, level))},
+                     median_after_build(run, level_count(&DetectProfile::level_sort_comparisons, level))},
+                    {"singular_items",
+                     median_after_build(run, level_count(&DetectProfile::level_singular_items, level))},
                     {"sort_fallback_items",
-                     median_after_build(run, level_count(&DetectStats::level_sort_fallback_items, level))}};
+                     median_after_build(run, level_count(&DetectProfile::level_sort_fallback_items, level))}};
             }
             counts["levels"] = levels;
         }
@@ -311,7 +312,7 @@ nlohmann::ordered_json json_summary(const RunRecord& run) {
     summary["bytes_held"] = run.bytes_held;
     summary["bytes_per_box"] = bytes_per_box(run);
     summary["peak_rss_bytes"] = run.peak_resident_bytes ? json(*run.peak_resident_bytes) : json(nullptr);
-    summary["oversized_boxes_last"] = run.steps.empty() ? 0 : run.steps.back().stats.oversized_boxes;
+    summary["oversized_boxes_last"] = run.steps.empty() ? 0 : run.steps.back().profile.oversized_boxes;
 
     const CheckRecord& check = run.check;
     json check_json = {{"enabled", check.enabled},

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "smb/pair.hpp"
+#include "smb/profile.hpp"
 #include "smb/stats.hpp"
 
 namespace smb::cli {
@@ -23,6 +24,7 @@ struct StepRecord {
     /// the wall time it shows whether other processes took the CPU away during the step.
     double detect_cpu_seconds = 0;
     DetectStats stats;
+    DetectProfile profile;
 };
 
 /// Outcome of comparing detections with the grid reference.
