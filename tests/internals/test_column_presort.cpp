@@ -17,8 +17,8 @@
 #include "cuts/column_presort.hpp"
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "reference/brute_force.hpp"
-#include "smb/settings.hpp"
 #include "smb/profile.hpp"
+#include "smb/settings.hpp"
 
 namespace smb::detail {
 namespace {
