@@ -47,6 +47,7 @@ class Detector:
         skin: float = ...,
         threads: int = ...,
         events: bool = ...,
+        profile: bool = ...,
         target_cell_population: int = ...,
         max_pairs_held: int = ...,
     ) -> None: ...
@@ -81,6 +82,8 @@ class Detector:
     @property
     def stats(self) -> dict[str, Any]: ...
     @property
+    def profile(self) -> dict[str, Any]: ...
+    @property
     def precision(self) -> Literal["none", "floats", "doubles"]: ...
     @property
     def bytes_held(self) -> int: ...
@@ -99,6 +102,7 @@ class World:
         *,
         threads: int = ...,
         events: bool = ...,
+        profile: bool = ...,
         pipeline: Literal["persistent_cuts", "paper_lists"] = ...,
         target_cell_population: int = ...,
         max_pairs_held: int = ...,
@@ -130,6 +134,8 @@ class World:
     ) -> Tuple[npt.NDArray[np.uint64], npt.NDArray[np.floating[Any]]]: ...
     @property
     def stats(self) -> dict[str, Any]: ...
+    @property
+    def profile(self) -> dict[str, Any]: ...
     @property
     def precision(self) -> Literal["none", "floats", "doubles"]: ...
     @property

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "smb/held_precision.hpp"
+#include "smb/profile.hpp"
 #include "smb/stats.hpp"
 
 namespace smb::python {
@@ -63,6 +64,7 @@ private:
 
 /// A DetectStats as a dict of its fields.
 py::dict stats_dict(const DetectStats& stats);
+py::dict profile_dict(const DetectProfile& profile);
 
 /// "none", "floats" or "doubles".
 const char* precision_name(HeldPrecision precision);

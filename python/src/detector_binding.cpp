@@ -118,16 +118,17 @@ void bind_detector(py::module_& module) {
     using Handle = DetectorHandle<Real, Dim>;
     py::class_<Handle>(module, ("Detector" + type_suffix<Real, Dim>()).c_str())
         .def(py::init([](double skin, std::size_t threads, std::size_t target_cell_population,
-                         std::size_t max_pairs_held, bool events) {
+                         std::size_t max_pairs_held, bool events, bool profile) {
                  DetectorSettings settings;
                  settings.skin = skin;
+                 settings.profile = profile;
                  settings.threads = threads;
                  settings.target_cell_population = target_cell_population;
                  settings.max_pairs_held = max_pairs_held;
                  return std::make_unique<Handle>(settings, events, static_cast<unsigned>(threads));
              }),
              py::arg("skin"), py::arg("threads"), py::arg("target_cell_population"), py::arg("max_pairs_held"),
-             py::arg("events"))
+             py::arg("events"), py::arg("profile") = false)
         .def("detect", &detect<Real, Dim>, py::arg("boxes"), py::arg("categories") = py::none(),
              py::arg("masks") = py::none(), py::arg("static") = py::none(), py::arg("sort") = false,
              py::arg("out") = py::none())
@@ -172,6 +173,11 @@ void bind_detector(py::module_& module) {
                                [](const Handle& self) {
                                    const BusyScope busy(self.busy, "this Detector");
                                    return stats_dict(self.detector.last_stats());
+                               })
+        .def_property_readonly("profile",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this Detector");
+                                   return profile_dict(self.detector.last_profile());
                                })
         .def_property_readonly("precision",
                                [](const Handle& self) {

@@ -26,6 +26,33 @@ py::dict stats_dict(const DetectStats& stats) {
     return dict;
 }
 
+py::dict profile_dict(const DetectProfile& profile) {
+    auto listed = [](const auto& values) {
+        py::list list;
+        for (const auto value : values) list.append(value);
+        return list;
+    };
+    py::dict dict;
+    dict["update_seconds"] = profile.update_seconds;
+    dict["scan_seconds"] = profile.scan_seconds;
+    dict["containment_seconds"] = profile.containment_seconds;
+    dict["quantile_seconds"] = profile.quantile_seconds;
+    dict["list_sort_seconds"] = profile.list_sort_seconds;
+    dict["cut_regroup_seconds"] = profile.cut_regroup_seconds;
+    dict["check_seconds"] = profile.check_seconds;
+    dict["copy_seconds"] = profile.copy_seconds;
+    dict["level_seconds"] = listed(profile.level_seconds);
+    dict["cells"] = profile.cells;
+    dict["oversized_boxes"] = profile.oversized_boxes;
+    dict["sort_moves"] = profile.sort_moves;
+    dict["level_sort_moves"] = listed(profile.level_sort_moves);
+    dict["level_sort_comparisons"] = listed(profile.level_sort_comparisons);
+    dict["level_singular_items"] = listed(profile.level_singular_items);
+    dict["level_sort_fallback_items"] = listed(profile.level_sort_fallback_items);
+    dict["largest_cell_boxes"] = profile.largest_cell_boxes;
+    return dict;
+}
+
 const char* precision_name(HeldPrecision precision) {
     switch (precision) {
         case HeldPrecision::floats:

@@ -111,9 +111,10 @@ void bind_world(py::module_& module) {
     };
     py::class_<Handle>(module, world_class_name<Real, Dim>().c_str())
         .def(py::init([](std::size_t threads, std::size_t target_cell_population, std::size_t max_pairs_held,
-                         const std::string& pipeline, bool events, double skin) {
+                         const std::string& pipeline, bool events, double skin, bool profile) {
                  WorldSettings settings;
                  settings.skin = skin;
+                 settings.profile = profile;
                  settings.threads = threads;
                  settings.target_cell_population = target_cell_population;
                  settings.max_pairs_held = max_pairs_held;
@@ -121,7 +122,7 @@ void bind_world(py::module_& module) {
                  return std::make_unique<Handle>(settings, events, static_cast<unsigned>(threads));
              }),
              py::arg("threads"), py::arg("target_cell_population"), py::arg("max_pairs_held"), py::arg("pipeline"),
-             py::arg("events"), py::arg("skin") = 0.0)
+             py::arg("events"), py::arg("skin") = 0.0, py::arg("profile") = false)
         .def("insert", [](Handle& self, py::handle ids, py::handle boxes) { insert_or_update(self, ids, boxes, true); })
         .def("update",
              [](Handle& self, py::handle ids, py::handle boxes) { insert_or_update(self, ids, boxes, false); })
@@ -189,6 +190,11 @@ void bind_world(py::module_& module) {
                                [](const Handle& self) {
                                    const BusyScope busy(self.busy, "this World");
                                    return stats_dict(self.world.last_stats());
+                               })
+        .def_property_readonly("profile",
+                               [](const Handle& self) {
+                                   const BusyScope busy(self.busy, "this World");
+                                   return profile_dict(self.world.last_profile());
                                })
         .def_property_readonly("precision",
                                [](const Handle& self) {

@@ -210,3 +210,28 @@ def test_clear_keeps_detecting():
     assert detector.bytes_held > 0
     detector.clear()
     np.testing.assert_array_equal(detector.detect(boxes, sort=True), brute_pairs(boxes))
+
+
+@pytest.mark.parametrize("cls", ["Detector", "World"])
+def test_profile_is_zero_unless_asked_for(cls):
+    rng = np.random.default_rng(5)
+    boxes = random_boxes(rng, 3000, 3, np.float64)
+    for profile in (False, True):
+        if cls == "Detector":
+            broad_phase = smb.Detector(3, np.float64, profile=profile)
+            broad_phase.detect(boxes)
+        else:
+            broad_phase = smb.World(3, np.float64, profile=profile)
+            broad_phase.assign(boxes)
+            broad_phase.detect()
+        phases = broad_phase.profile
+        assert set(phases) >= {"check_seconds", "copy_seconds", "level_seconds", "cells", "sort_moves"}
+        assert len(phases["level_seconds"]) == 3
+        if profile:
+            assert phases["check_seconds"] > 0
+            assert phases["cells"] > 0
+        else:
+            assert phases["check_seconds"] == 0
+            assert phases["cells"] == 0
+            assert all(seconds == 0 for seconds in phases["level_seconds"])
+        assert broad_phase.stats["boxes"] == len(boxes)
