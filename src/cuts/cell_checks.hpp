@@ -55,6 +55,7 @@ public:
                       std::vector<Position>& home) {
         threads_ = threads;
         cell_pairs_.resize(threads);
+        gather_visitors(checked);
         const std::size_t moves = check_cells(checked, sure_margin, report, home);
         check_oversized(checked, report);
         return moves;
@@ -64,6 +65,7 @@ public:
         std::size_t bytes =
             cell_pairs_.bytes_held([](const CellPairs<Real, Dim>& pairs) { return pairs.bytes_held(); });
         bytes += blocks_.capacity() * sizeof(BlockOutput);
+        bytes += (visitor_begin_.capacity() + visitors_.capacity()) * sizeof(Position);
         for (const BlockOutput& block : blocks_)
             bytes += block.pairs.capacity() * sizeof(Pair) + block.home.capacity() * sizeof(Position);
         return bytes;
@@ -88,6 +90,8 @@ private:
     template <class Checked, class Collect>
     std::size_t check_column(const Checked& checked, std::size_t column, CellPairs<Real, Dim>& cell_pairs,
                              Collect& collect, std::vector<Position>& home, const bool* give_up);
+    template <class Checked>
+    void gather_visitors(const Checked& checked);
     template <class Checked, class Report>
     void check_oversized(const Checked& checked, Report& report);
     template <class Checked, class Collect>
@@ -95,6 +99,10 @@ private:
 
     PerThread<CellPairs<Real, Dim>> cell_pairs_;
     std::vector<BlockOutput> blocks_;  // one per block of a round of cell checks
+    // The oversized boxes that cover each cell, in x order: cell c's are
+    // visitors_[visitor_begin_[c], visitor_begin_[c + 1]).
+    std::vector<Position> visitor_begin_;
+    std::vector<Position> visitors_;
     int threads_ = 1;
 };
 
@@ -224,18 +232,45 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
             const std::span<const std::uint32_t> sorted = cell_pairs.swept_positions();
             std::copy(sorted.begin(), sorted.end(), checked.columns.entries.begin() + first);
             checked.columns.widest[cell] = cell_pairs.widest_x();
-            continue;
+        } else {
+            moves += own_ids ? cell_pairs.check(entries, boxes, ids, checked.cells.floor_of(cell), collect, home)
+                             : cell_pairs.check(entries, boxes, slots, checked.cells.floor_of(cell), collect, home);
         }
-        moves += own_ids ? cell_pairs.check(entries, boxes, ids, checked.cells.floor_of(cell), collect, home)
-                         : cell_pairs.check(entries, boxes, slots, checked.cells.floor_of(cell), collect, home);
+        const std::span<const Position> visitors(visitors_.data() + visitor_begin_[cell],
+                                                 visitor_begin_[cell + 1] - visitor_begin_[cell]);
+        if (!visitors.empty()) {
+            // A swept cell is in x order; one tested pair by pair is sorted only if it was swept.
+            const bool sorted = swept_columns || size > CellPairs<Real, Dim>::kAllPairsLimit;
+            cell_pairs.check_visitors(visitors, boxes, checked.cells.floor_of(cell), sorted, collect);
+        }
     }
     return moves;
 }
 
-/// Oversized boxes are in no cell. Each is tested against the boxes of every cell it covers,
-/// under the same lower-corner rule as the cells (so a pair is reported once even when the
-/// other box is registered in several of those cells), and against the oversized boxes after
-/// it in x order by a sweep on x.
+/// Lists, cell by cell, the oversized boxes that cover it (in x order), which the check of each
+/// cell then tests against the cell's boxes as it has them laid out (CellPairs::check_visitors()).
+template <std::floating_point Real, int Dim>
+template <class Checked>
+void CellChecks<Real, Dim>::gather_visitors(const Checked& checked) {
+    const std::size_t cells = checked.cells.begin.size() - 1;
+    visitor_begin_.assign(cells + 2, 0);
+    const std::span<const Box<Real, Dim>> boxes = checked.boxes;
+    for (const Position big : checked.oversized)
+        checked.cells.for_each_covering(
+            boxes[big], [&](std::size_t cell, const CellFloor<Real, Dim>&) { ++visitor_begin_[cell + 2]; });
+    for (std::size_t c = 2; c < visitor_begin_.size(); ++c) visitor_begin_[c] += visitor_begin_[c - 1];
+    visitors_.resize(visitor_begin_.back());
+    for (const Position big : checked.oversized)
+        checked.cells.for_each_covering(boxes[big], [&](std::size_t cell, const CellFloor<Real, Dim>&) {
+            visitors_[visitor_begin_[cell + 1]++] = big;
+        });
+    visitor_begin_.pop_back();
+}
+
+/// Oversized boxes are in no cell. Each is tested against the boxes of every cell it covers by
+/// that cell's check (gather_visitors()), under the same lower-corner rule as the cells (so a
+/// pair is reported once even when the other box is registered in several of those cells); here,
+/// against the oversized boxes after it in x order, by a sweep on x.
 template <std::floating_point Real, int Dim>
 template <class Checked, class Report>
 void CellChecks<Real, Dim>::check_oversized(const Checked& checked, Report& report) {
@@ -247,8 +282,7 @@ void CellChecks<Real, Dim>::check_oversized(const Checked& checked, Report& repo
                       });
 }
 
-/// Oversized box number `index` (in x order) against the boxes of the cells it covers and
-/// against the oversized boxes after it; stops early once *give_up is set.
+/// Oversized box number `index` (in x order) against the oversized boxes after it.
 template <std::floating_point Real, int Dim>
 template <class Checked, class Collect>
 void CellChecks<Real, Dim>::check_one_oversized(const Checked& checked, std::size_t index, Collect& collect,
@@ -257,8 +291,7 @@ void CellChecks<Real, Dim>::check_one_oversized(const Checked& checked, std::siz
     const std::span<const Position> sorted = checked.oversized;  // in x order
     const Position big = sorted[index];
     const Box<Real, Dim>& a = boxes[big];
-    checked.cells.for_each_box_overlapping(
-        a, boxes, [&](Position other) { collect(big, other); }, give_up);
+    (void)give_up;
     for (std::size_t j = index + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
         if (overlaps(a, boxes[sorted[j]])) collect(big, sorted[j]);
     }

@@ -113,6 +113,45 @@ public:
         return moves;
     }
 
+    /// After check() or check_by_sweep() of a cell: the oversized boxes that cover it (positions
+    /// `visitors`, the cell's lower planes `floor`) against the cell's boxes, each pair whose
+    /// lower intersection corner lies in the cell reported as report(visitor, position). `swept`:
+    /// the cell was laid out in x order, so each visitor reads only the boxes that reach its x
+    /// range (within widest_x() before its min x, up to its max x).
+    template <class Report>
+    void check_visitors(std::span<const std::uint32_t> visitors, std::span<const Box<Real, Dim>> boxes,
+                        const CellFloor<Real, Dim>& floor, bool swept, Report& report) const {
+        const std::size_t m = laid_out_;
+        const float* min_x = rows_.columns.min[0];
+        const std::uint32_t* position = rows_.columns.position;
+        for (const std::uint32_t visitor : visitors) {
+            const Box<Real, Dim>& box = boxes[visitor];
+            std::array<float, Dim> low{}, high{};
+            Mask own = 0;
+            for (int k = 0; k < Dim; ++k) {
+                low[k] = to_float(box.min[k]);
+                high[k] = to_float(box.max[k]);
+                own |= static_cast<Mask>((box.min[k] >= floor[k] ? 1U : 0U) << k);
+            }
+            std::size_t from = 0;
+            if (swept) {
+                // A box that reaches the visitor's min x has min x >= that min x - widest_x();
+                // rounded down, and rounding to floats keeps the order, so none is skipped.
+                const float reach_from =
+                    to_float(std::nextafter(box.min[0] - widest_x_, -std::numeric_limits<Real>::infinity()));
+                from = static_cast<std::size_t>(
+                    std::partition_point(min_x, min_x + m, [&](float x) { return x < reach_from; }) - min_x);
+            }
+            rows_.visitor_row(from, m, swept, own, low, high, hit_room_,
+                              [&](const std::uint32_t* hits, std::size_t count) {
+                                  for (std::size_t t = 0; t < count; ++t) {
+                                      const std::uint32_t other = position[hits[t]];
+                                      if (kExactLanes || overlaps(box, boxes[other])) report(visitor, other);
+                                  }
+                              });
+        }
+    }
+
     /// After check_by_sweep(): the positions of the cell in x order (by min x), and a bound
     /// on the x extent of its boxes (at least every box's max x - min x); valid until the next
     /// check.
@@ -165,6 +204,8 @@ private:
                                                        const CellFloor<Real, Dim>& floor) {
         const std::size_t padded = m + kPadding;
         rows_.columns = scratch_.lay_out_for(padded, hit_room);
+        laid_out_ = m;
+        hit_room_ = hit_room;
         for (std::size_t r = 0; r < m; ++r) {
             const std::uint32_t position = position_at(r);
             const Box<Real, Dim>& box = boxes[position];
@@ -363,6 +404,8 @@ private:
     CellRows<Dim> rows_;  // the columns laid out in scratch_, and the row tests that read them
     float sure_margin_ = std::numeric_limits<float>::infinity();
     std::vector<std::uint32_t> own_home_;  // the cell's home boxes, on their way to `home`
+    std::size_t laid_out_ = 0;             // boxes of the cell laid out last
+    std::size_t hit_room_ = 0;             // and the room for hits after them
 };
 
 }  // namespace smb::detail

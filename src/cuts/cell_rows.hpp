@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <type_traits>
 
@@ -66,6 +67,24 @@ struct CellRows {
         }
 #endif
         swept_rows_in_lanes<4>(m, room, flush);
+    }
+
+    /// A box from outside the cell (an oversized box that covers it: its `own` inside bits, its
+    /// `low` and `high` corners, as floats) against the laid-out boxes from `from` on: every one
+    /// (`sorted` false), or, the cell laid out in x order, those whose min x does not pass
+    /// high[0]. The local numbers of those that pass the lanes' test (both ways on every axis,
+    /// and the lower-corner rule) are written down without a branch and handed to
+    /// flush(hits, count) whenever fewer than `room` - Lanes places are left, and at the end.
+    template <class Flush>
+    void visitor_row(std::size_t from, std::size_t m, bool sorted, Mask own, const std::array<float, Dim>& low,
+                     const std::array<float, Dim>& high, std::size_t room, Flush&& flush) const {
+#if SMB_LANES_AVX2
+        if (cpu_has_avx2()) {
+            visitor_row_avx2(from, m, sorted, own, low, high, room, flush);
+            return;
+        }
+#endif
+        visitor_row_in_lanes<4>(from, m, sorted, own, low, high, room, flush);
     }
 
     /// Writes the hit list with every pair (i << 16 | j, i < j) that passes the lanes' test on
@@ -188,7 +207,37 @@ private:
         flush(static_cast<const std::uint32_t*>(first), static_cast<std::size_t>(out - first));
     }
 
+    template <std::size_t Lanes, class Flush>
+    [[gnu::always_inline]] inline void visitor_row_in_lanes(std::size_t from, std::size_t m, bool sorted, Mask own,
+                                                            const std::array<float, Dim>& low,
+                                                            const std::array<float, Dim>& high, std::size_t room,
+                                                            Flush& flush) const {
+        using MaskLanes = typename FloatLanes<Lanes>::Masks;
+        MaskLanes lane{};
+        for (std::size_t l = 0; l < Lanes; ++l) lane[l] = static_cast<Mask>(l);
+        std::uint32_t* const first = columns.hits;
+        std::uint32_t* const full = first + (room - Lanes);
+        std::uint32_t* out = first;
+        const float stop = sorted ? high[0] : std::numeric_limits<float>::infinity();
+        // The lanes past m hold the padding, which no test passes.
+        for (std::size_t j = from; j < m && !(columns.min[0][j] > stop); j += Lanes) {
+            if (out > full) {
+                flush(static_cast<const std::uint32_t*>(first), static_cast<std::size_t>(out - first));
+                out = first;
+            }
+            out = append_set_lanes<Lanes>(out, lanes_hit<Lanes, false>(j, own, low, high), lane + static_cast<Mask>(j));
+        }
+        flush(static_cast<const std::uint32_t*>(first), static_cast<std::size_t>(out - first));
+    }
+
 #if SMB_LANES_AVX2
+    template <class Flush>
+    [[gnu::target("avx2,popcnt")]] void visitor_row_avx2(std::size_t from, std::size_t m, bool sorted, Mask own,
+                                                         const std::array<float, Dim>& low,
+                                                         const std::array<float, Dim>& high, std::size_t room,
+                                                         Flush& flush) const {
+        visitor_row_in_lanes<8>(from, m, sorted, own, low, high, room, flush);
+    }
     template <class Flush>
     [[gnu::target("avx2,popcnt")]] void swept_rows_avx2(std::size_t m, std::size_t room, Flush& flush) {
         swept_rows_in_lanes<8>(m, room, flush);
