@@ -8,6 +8,7 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -65,7 +66,7 @@ public:
         std::size_t bytes =
             cell_pairs_.bytes_held([](const CellPairs<Real, Dim>& pairs) { return pairs.bytes_held(); });
         bytes += blocks_.capacity() * sizeof(BlockOutput);
-        bytes += (visitor_begin_.capacity() + visitors_.capacity()) * sizeof(Position);
+        if (visitors_) bytes += sizeof(Visitors) + visitors_->bytes_held();
         for (const BlockOutput& block : blocks_)
             bytes += block.pairs.capacity() * sizeof(Pair) + block.home.capacity() * sizeof(Position);
         return bytes;
@@ -99,10 +100,18 @@ private:
 
     PerThread<CellPairs<Real, Dim>> cell_pairs_;
     std::vector<BlockOutput> blocks_;  // one per block of a round of cell checks
-    // The oversized boxes that cover each cell, in x order: cell c's are
-    // visitors_[visitor_begin_[c], visitor_begin_[c + 1]).
-    std::vector<Position> visitor_begin_;
-    std::vector<Position> visitors_;
+    /// The oversized boxes that cover each cell, in x order: cell c's are
+    /// boxes[begin[c], begin[c + 1]); `begin` empty where no box is oversized.
+    struct Visitors {
+        std::vector<Position> begin;
+        std::vector<Position> boxes;
+        [[nodiscard]] std::size_t bytes_held() const noexcept {
+            return (begin.capacity() + boxes.capacity()) * sizeof(Position);
+        }
+    };
+    // Held apart, made when a box is first oversized: most scenes have none, and a World or
+    // Detector holds a pipeline of each precision.
+    std::unique_ptr<Visitors> visitors_;
     int threads_ = 1;
 };
 
@@ -236,8 +245,9 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
             moves += own_ids ? cell_pairs.check(entries, boxes, ids, checked.cells.floor_of(cell), collect, home)
                              : cell_pairs.check(entries, boxes, slots, checked.cells.floor_of(cell), collect, home);
         }
-        const std::span<const Position> visitors(visitors_.data() + visitor_begin_[cell],
-                                                 visitor_begin_[cell + 1] - visitor_begin_[cell]);
+        if (!visitors_ || visitors_->begin.empty()) continue;
+        const std::span<const Position> visitors(visitors_->boxes.data() + visitors_->begin[cell],
+                                                 visitors_->begin[cell + 1] - visitors_->begin[cell]);
         if (!visitors.empty()) {
             // A swept cell is in x order; one tested pair by pair is sorted only if it was swept.
             const bool sorted = swept_columns || size > CellPairs<Real, Dim>::kAllPairsLimit;
@@ -252,19 +262,25 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
 template <std::floating_point Real, int Dim>
 template <class Checked>
 void CellChecks<Real, Dim>::gather_visitors(const Checked& checked) {
+    if (checked.oversized.empty()) {
+        if (visitors_) visitors_->begin.clear();
+        return;
+    }
+    if (!visitors_) visitors_ = std::make_unique<Visitors>();
+    std::vector<Position>& begin = visitors_->begin;
     const std::size_t cells = checked.cells.begin.size() - 1;
-    visitor_begin_.assign(cells + 2, 0);
+    begin.assign(cells + 2, 0);
     const std::span<const Box<Real, Dim>> boxes = checked.boxes;
     for (const Position big : checked.oversized)
-        checked.cells.for_each_covering(
-            boxes[big], [&](std::size_t cell, const CellFloor<Real, Dim>&) { ++visitor_begin_[cell + 2]; });
-    for (std::size_t c = 2; c < visitor_begin_.size(); ++c) visitor_begin_[c] += visitor_begin_[c - 1];
-    visitors_.resize(visitor_begin_.back());
+        checked.cells.for_each_covering(boxes[big],
+                                        [&](std::size_t cell, const CellFloor<Real, Dim>&) { ++begin[cell + 2]; });
+    for (std::size_t c = 2; c < begin.size(); ++c) begin[c] += begin[c - 1];
+    visitors_->boxes.resize(begin.back());
     for (const Position big : checked.oversized)
         checked.cells.for_each_covering(boxes[big], [&](std::size_t cell, const CellFloor<Real, Dim>&) {
-            visitors_[visitor_begin_[cell + 1]++] = big;
+            visitors_->boxes[begin[cell + 1]++] = big;
         });
-    visitor_begin_.pop_back();
+    begin.pop_back();
 }
 
 /// Oversized boxes are in no cell. Each is tested against the boxes of every cell it covers by
