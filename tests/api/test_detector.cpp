@@ -38,7 +38,10 @@ struct SceneKind {
     double tiny_fraction = 0;  ///< share of boxes 1e-6 of `side` wide (points when `points`)
     bool points = false;
     double huge_fraction = 0;  ///< share of boxes as wide as the space
-    bool lattice = false;      ///< unit boxes on an integer lattice: every neighbour touches
+    /// Share of boxes 4 to 12 times `side` wide: wider than a few cells, so checked as oversized
+    /// boxes by the cells they cover.
+    double large_fraction = 0;
+    bool lattice = false;  ///< unit boxes on an integer lattice: every neighbour touches
 };
 
 std::vector<SceneKind> scene_kinds() {
@@ -48,6 +51,7 @@ std::vector<SceneKind> scene_kinds() {
         {.name = "far", .centre = 1e6, .side = 1e-2, .space = 0.3},
         {.name = "very far", .centre = -3e12, .side = 5, .space = 150},
         {.name = "tiny and huge", .tiny_fraction = 0.3, .huge_fraction = 0.01},
+        {.name = "a few large", .space = 25, .large_fraction = 0.04},
         {.name = "points", .tiny_fraction = 0.6, .points = true},
         {.name = "lattice", .space = 8, .lattice = true},
         {.name = "beyond float range", .centre = 1e300, .side = 1e298, .space = 1e300},
@@ -66,6 +70,8 @@ protected:
         std::array<double, Dim> half{};
         const bool tiny = chance(random, kind.tiny_fraction);
         const bool huge = !tiny && chance(random, kind.huge_fraction);
+        // Drawn only where asked for, so that the other kinds' scenes stay as they were.
+        const bool large = !tiny && !huge && kind.large_fraction > 0 && chance(random, kind.large_fraction);
         for (int k = 0; k < Dim; ++k) {
             if (kind.lattice) {
                 centre[k] = kind.centre + std::floor(uniform(random, 0, kind.space)) + 0.5;
@@ -76,6 +82,7 @@ protected:
             double side = kind.side * uniform(random, 0.5, 1.5);
             if (tiny) side = kind.points ? 0.0 : kind.side * 1e-6;
             if (huge) side = kind.space;
+            if (large) side = kind.side * uniform(random, 4, 12);
             half[k] = 0.5 * side;
         }
         return box_around<Real, Dim>(centre, half);
@@ -97,7 +104,10 @@ protected:
     void drive(const SceneKind& kind, std::uint64_t seed, const DetectorSettings& settings, int steps = 12) {
         SCOPED_TRACE(::testing::Message() << kind.name << ", seed " << seed << ", threads " << settings.threads);
         Random random(seed);
-        Detector<Real, Dim> detector(settings);
+        DetectorSettings profiled = settings;
+        profiled.profile = true;  // to see that the large boxes are checked as oversized ones
+        Detector<Real, Dim> detector(profiled);
+        std::size_t oversized = 0;
         std::vector<BoxT> boxes;
         for (int i = 0; i < 600; ++i) boxes.push_back(new_box(random, kind));
         for (int step = 0; step < steps; ++step) {
@@ -112,12 +122,16 @@ protected:
             }
             std::vector<Pair> pairs;
             const DetectStats stats = detector.detect(boxes, pairs);
+            oversized += detector.last_profile().oversized_boxes;
             EXPECT_EQ(stats.pairs, pairs.size());
             EXPECT_EQ(stats.boxes, boxes.size());
             const std::vector<BoxT>& shown = boxes;
             EXPECT_TRUE(same_pairs(pairs, brute_force_pairs<Real, Dim>(boxes),
                                    [&shown](BoxId id) { return describe(shown.at(id)); }));
             if (::testing::Test::HasFailure()) return;
+        }
+        if (kind.large_fraction > 0) {
+            EXPECT_GT(oversized, 0U);
         }
     }
 };
