@@ -96,7 +96,7 @@ private:
     template <class Checked, class Report>
     void check_oversized(const Checked& checked, Report& report);
     template <class Checked, class Collect>
-    void check_one_oversized(const Checked& checked, std::size_t index, Collect& collect, const bool* give_up) const;
+    void check_one_oversized(const Checked& checked, std::size_t index, Collect& collect) const;
 
     PerThread<CellPairs<Real, Dim>> cell_pairs_;
     std::vector<BlockOutput> blocks_;  // one per block of a round of cell checks
@@ -292,8 +292,8 @@ template <class Checked, class Report>
 void CellChecks<Real, Dim>::check_oversized(const Checked& checked, Report& report) {
     std::vector<Position> no_home;  // oversized boxes have no home cell
     in_ordered_rounds(checked, checked.oversized.size(), report, no_home,
-                      [&](std::size_t index, auto& collect, std::vector<Position>&, const bool* give_up) {
-                          check_one_oversized(checked, index, collect, give_up);
+                      [&](std::size_t index, auto& collect, std::vector<Position>&, const bool*) {
+                          check_one_oversized(checked, index, collect);
                           return std::size_t{0};
                       });
 }
@@ -301,13 +301,11 @@ void CellChecks<Real, Dim>::check_oversized(const Checked& checked, Report& repo
 /// Oversized box number `index` (in x order) against the oversized boxes after it.
 template <std::floating_point Real, int Dim>
 template <class Checked, class Collect>
-void CellChecks<Real, Dim>::check_one_oversized(const Checked& checked, std::size_t index, Collect& collect,
-                                                const bool* give_up) const {
+void CellChecks<Real, Dim>::check_one_oversized(const Checked& checked, std::size_t index, Collect& collect) const {
     const std::span<const Box<Real, Dim>> boxes = checked.boxes;
     const std::span<const Position> sorted = checked.oversized;  // in x order
     const Position big = sorted[index];
     const Box<Real, Dim>& a = boxes[big];
-    (void)give_up;
     for (std::size_t j = index + 1; j < sorted.size() && boxes[sorted[j]].min[0] <= a.max[0]; ++j) {
         if (overlaps(a, boxes[sorted[j]])) collect(big, sorted[j]);
     }
