@@ -248,11 +248,7 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
         if (!visitors_ || visitors_->begin.empty()) continue;
         const std::span<const Position> visitors(visitors_->boxes.data() + visitors_->begin[cell],
                                                  visitors_->begin[cell + 1] - visitors_->begin[cell]);
-        if (!visitors.empty()) {
-            // A swept cell is in x order; one tested pair by pair is sorted only if it was swept.
-            const bool sorted = swept_columns || size > CellPairs<Real, Dim>::kAllPairsLimit;
-            cell_pairs.check_visitors(visitors, boxes, checked.cells.floor_of(cell), sorted, collect);
-        }
+        if (!visitors.empty()) cell_pairs.check_visitors(visitors, boxes, checked.cells.floor_of(cell), collect);
     }
     return moves;
 }

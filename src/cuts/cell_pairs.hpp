@@ -85,6 +85,7 @@ public:
     void check_all_pairs(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
                          const CellFloor<Real, Dim>& floor, Report& report, std::vector<std::uint32_t>& home) {
         lay_out(entries, boxes, floor);
+        laid_out_swept_ = false;
         test_all_pairs(entries.size(), boxes, report, home);
     }
 
@@ -96,6 +97,7 @@ public:
                                std::vector<std::uint32_t>& home) {
         const std::size_t m = entries.size();
         const std::size_t moves = sort_on_x(entries, boxes);
+        laid_out_swept_ = true;
         std::uint64_t* order = order_.data();
         order_equal_keys(order, m, entries, boxes, ids);
         lay_out_sorted(order, m, entries, boxes, floor);
@@ -115,12 +117,13 @@ public:
 
     /// After check() or check_by_sweep() of a cell: the oversized boxes that cover it (positions
     /// `visitors`, the cell's lower planes `floor`) against the cell's boxes, each pair whose
-    /// lower intersection corner lies in the cell reported as report(visitor, position). `swept`:
-    /// the cell was laid out in x order, so each visitor reads only the boxes that reach its x
-    /// range (within widest_x() before its min x, up to its max x).
+    /// lower intersection corner lies in the cell reported as report(visitor, position). A swept
+    /// cell is laid out in x order, so each visitor reads only the boxes that reach its x range
+    /// (within widest_x() before its min x, up to its max x).
     template <class Report>
     void check_visitors(std::span<const std::uint32_t> visitors, std::span<const Box<Real, Dim>> boxes,
-                        const CellFloor<Real, Dim>& floor, bool swept, Report& report) const {
+                        const CellFloor<Real, Dim>& floor, Report& report) const {
+        const bool swept = laid_out_swept_;
         const std::size_t m = laid_out_;
         const float* min_x = rows_.columns.min[0];
         const std::uint32_t* position = rows_.columns.position;
@@ -406,6 +409,7 @@ private:
     std::vector<std::uint32_t> own_home_;  // the cell's home boxes, on their way to `home`
     std::size_t laid_out_ = 0;             // boxes of the cell laid out last
     std::size_t hit_room_ = 0;             // and the room for hits after them
+    bool laid_out_swept_ = false;          // and whether it was laid out in x order
 };
 
 }  // namespace smb::detail

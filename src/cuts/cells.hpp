@@ -81,12 +81,10 @@ struct Cells {
     /// `boxes` overlaps `query`, once: a box registered in several of those cells is visited by the
     /// cell holding the lower corner of the two boxes' intersection (the cells' own rule: every box
     /// registered in a cell, and `query`, have min below the cell's upper plane on every axis).
-    /// Stops early once *give_up is set.
     template <class Visit>
-    void for_each_box_overlapping(const Box<Real, Dim>& query, std::span<const Box<Real, Dim>> boxes, Visit&& visit,
-                                  const bool* give_up = nullptr) const {
+    void for_each_box_overlapping(const Box<Real, Dim>& query, std::span<const Box<Real, Dim>> boxes,
+                                  Visit&& visit) const {
         for_each_covering(query, [&](std::size_t cell, const CellFloor<Real, Dim>& floor) {
-            if (give_up != nullptr && *give_up) return;
             std::uint32_t first = begin[cell];
             const std::uint32_t last = begin[cell + 1];
             if (!widest.empty()) {
