@@ -22,7 +22,8 @@ method the build step, the median of the ten steps after it, the median of the l
 steps, and each as a ratio grid ÷ method (above 1: faster than the grid).
 Usage: scripts/bench-headline.py --build-dir build-bench [--name headline] [--steps 40]
        [--boxes-3d 1000000] [--boxes-2d 100000] [--boxes-family 300000] [--rounds 1]
-       [--only METHOD,...] [--extra METHOD,...] [--families paper,mixed,...]
+       [--only METHOD,...] [--extra METHOD,...] [--families paper,mixed,...] [--dims 2,3]
+       [--update-factors 1e-3,...]
 """
 
 import argparse
@@ -144,6 +145,9 @@ def main():
     parser.add_argument("--boxes-2d", type=int, default=100_000)
     parser.add_argument("--boxes-family", type=int, default=300_000, help="boxes of the 3D scenes other than paper")
     parser.add_argument("--families", default="", help="comma-separated scene families to run (default: all)")
+    parser.add_argument("--dims", default="", help="comma-separated dimensions to run, 2 and/or 3 (default: both)")
+    parser.add_argument("--update-factors", default="",
+                        help="comma-separated update factors Λ to run, as in the scene list (default: all)")
     parser.add_argument("--rounds", type=int, default=1,
                         help="runs of every method, alternating; the tables show the median (default 1)")
     parser.add_argument("--only", default="", help="comma-separated methods to run (the grid always runs)")
@@ -163,8 +167,14 @@ def main():
     started, load_before = time.monotonic(), load_average()
     rows, raw_lines, problems = [], [], []
     families = set(args.families.split(",")) if args.families else None
+    dims = {int(d) for d in args.dims.split(",")} if args.dims else None
+    update_factors = [float(f) for f in args.update_factors.split(",")] if args.update_factors else None
     for family, dim, update_factor, size, methods in SCENES:
         if families is not None and family not in families:
+            continue
+        if dims is not None and dim not in dims:
+            continue
+        if update_factors is not None and not any(abs(update_factor - f) <= 1e-9 * f for f in update_factors):
             continue
         if dim == 2:
             boxes = args.boxes_2d
