@@ -15,7 +15,7 @@
 #include "core/settings_check.hpp"
 #include "core/stopwatch.hpp"
 #include "engine/detection_engine.hpp"
-#include "filters/detector_classes.hpp"
+#include "filters/class_detections.hpp"
 #include "filters/filtered_sink.hpp"
 #include "periodic/periodic_path.hpp"
 #include "smb/candidate_pairs.hpp"
@@ -82,11 +82,12 @@ public:
         return finish(stats, profile, whole);
     }
 
-    /// The detection with filters (smb/filter.hpp), `filters` checked against `boxes`: the pairs
-    /// pass through the filtered sink (filters/filtered_sink.hpp). Where the filters make
-    /// interaction classes, each is detected apart (filters/detector_classes.hpp); otherwise the
-    /// boxes that pair with nothing stay out of the detection. The skin's candidates then name
-    /// the boxes gathered, not the caller's: none are offered.
+    /// The detection with filters (smb/filter.hpp), `filters` checked against `boxes`. Where the
+    /// filters make interaction classes, each is detected apart by the filter layer a World uses
+    /// too (filters/class_detections.hpp); otherwise the pairs pass through the filtered sink
+    /// (filters/filtered_sink.hpp), and the boxes that pair with nothing stay out of the
+    /// detection. The skin's candidates then name the boxes gathered, not the caller's: none
+    /// are offered.
     DetectStats detect_filtered(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters,
                                 const PairSink& sink) {
         if (!filters_in_use(filters)) return detect(boxes, sink);
@@ -96,14 +97,8 @@ public:
         if (!filters.filters.empty()) {
             const Stopwatch whole;
             (void)checked_bounds(boxes);
-            DetectStats split;
-            DetectProfile profile;
-            if (classes_.detect(boxes, filters, sink, settings_, split, profile)) {
-                engine_.clear();
-                skin_detected_ = false;
-                split.boxes = boxes.size();
-                return finish(split, profile, whole);
-            }
+            if (classes_.follow(filters.filters)) return detect_split(boxes, filters, sink, whole);
+            classes_.clear();
             gathered = gather_interacting(boxes, filters.filters, gathered_, gathered_origin_);
         }
         const std::span<const std::uint32_t> origin =
@@ -139,6 +134,23 @@ public:
     }
 
 private:
+    /// The filtered detection class by class, the classes following `filters` already.
+    DetectStats detect_split(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters, const PairSink& sink,
+                             const Stopwatch& whole) {
+        engine_.clear();
+        skin_detected_ = false;
+        DetectStats stats;
+        DetectProfile profile;
+        stats.boxes = boxes.size();
+        const std::span<const Filter> filter = filters.filters;
+        classes_.gather([&](std::size_t i) { return boxes[i]; }, [&](std::size_t i) { return IdFilter{i, filter[i]}; });
+        PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
+        const PairRules rules{filters.statics, filters.predicate ? &filters.predicate : nullptr};
+        classes_.detect(settings_, settings_.skin, output, rules, stats, profile);
+        output.flush();
+        return finish(stats, profile, whole);
+    }
+
     /// What every detection closes with, whichever path it took.
     DetectStats finish(DetectStats stats, const DetectProfile& profile, const Stopwatch& whole) {
         stats.bytes_held = bytes_held();
@@ -155,7 +167,7 @@ private:
     std::vector<Pair> chunk_;
     std::vector<Box<Real, Dim>> gathered_;
     std::vector<std::uint32_t> gathered_origin_;
-    DetectorClasses<Real, Dim> classes_;
+    ClassDetections<Real, Dim> classes_;
     bool skin_detected_ = false;     // the last detection ran on the skin list, and returned
     bool candidates_ready_ = false;  // candidate_pairs_ and candidate_margin_ are its own
     std::vector<Pair> candidate_pairs_;

@@ -1,17 +1,23 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The moving boxes of a World's filtered path detected class by class (interaction_classes.hpp),
-// where there is more than one class: each class that can pair within has its own array of boxes
-// in the order of its members (class_members.hpp) and its own detection engine
-// (engine/detection_engine.hpp), its pairs passing through the filters (filtered_report.hpp) on
-// their way out. A class whose values pass with none of its own is not gathered at all.
+// The filter layer of both front doors: boxes split by interaction classes
+// (interaction_classes.hpp) and, where there is more than one class, detected class by class.
+// Each class that can pair within has its own array of boxes in the order of its members
+// (class_members.hpp) and its own detection engine (engine/detection_engine.hpp), whose
+// persistent cuts then follow that class from one detection to the next; its pairs pass through
+// the filters (filtered_report.hpp) on their way out. A class whose values pass with none of its
+// own is not gathered at all. Two layers that ignore each other cost their two detections, not
+// one detection of all their boxes in which the pairs across the layers are found and dropped.
+//
+// The boxes are known by position: a World places the positions of its list of moving boxes as
+// they change (world_filters.hpp), a Detector brings the caller's indices to their filters at
+// every call (follow()).
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "core/box_store.hpp"
 #include "engine/detection_engine.hpp"
 #include "filters/class_members.hpp"
 #include "filters/filtered_report.hpp"
@@ -23,19 +29,18 @@
 
 namespace smb::detail {
 
-/// Detects `boxes` (valid) with `engine`, each pair passing the filters and the predicate (if
-/// not null) on its way to `output`: by the boxes' packed keys where `packed`, otherwise by
-/// index into `info`.
+/// Detects `boxes` (valid) with `engine`, each pair passing the filters and `rules` on its way to
+/// `output`: by the boxes' packed keys where `packed`, otherwise by index into `info`.
 template <std::floating_point Real, int Dim, class Output>
 void detect_gathered(DetectionEngine<Real, Dim>& engine, std::span<const Box<Real, Dim>> boxes,
                      std::span<const BoxId> keys, std::span<const IdFilter> info, bool packed,
-                     const DetectionSettings& settings, double skin, Output& output, const PairPredicate* predicate,
+                     const DetectionSettings& settings, double skin, Output& output, const PairRules& rules,
                      DetectStats& stats, DetectProfile& profile) {
     if (packed) {
-        PackedFilterReport<Output> report(output, predicate);
+        PackedFilterReport<Output> report(output, rules);
         engine.detect({boxes, keys, nullptr, true}, settings, skin, report, stats, profile);
     } else {
-        FilteredReport<Output> report(output, info, predicate);
+        FilteredReport<Output> report(output, info, rules);
         engine.detect({boxes, {}, nullptr, true}, settings, skin, report, stats, profile);
     }
 }
@@ -43,38 +48,68 @@ void detect_gathered(DetectionEngine<Real, Dim>& engine, std::span<const Box<Rea
 template <std::floating_point Real, int Dim>
 class ClassDetections {
 public:
-    /// Forgets every class's pipeline, boxes and members, keeping room for `count` classes.
-    void reset(std::size_t count) {
-        classes_.clear();
-        classes_.resize(count);
-        members_.reset(count);
-    }
-    void clear() {
-        std::vector<ClassDetection>().swap(classes_);
-        members_.clear();
+    [[nodiscard]] const InteractionClasses& classes() const noexcept { return classes_; }
+    /// Whether the boxes are detected class by class.
+    [[nodiscard]] bool split() const noexcept { return classes_.count() > 1; }
+
+    /// New classes from the values filter_of(p) of positions [0, n), every position placed in
+    /// its class; the classes' engines start afresh.
+    template <class FilterOf>
+    void build(std::size_t n, FilterOf&& filter_of) {
+        classes_.build(n, filter_of);
+        std::vector<Detection>().swap(detections_);
+        if (!split()) {
+            members_.clear();
+            return;
+        }
+        detections_.resize(classes_.count());
+        members_.reset(classes_.count());
+        for (std::size_t p = 0; p < n; ++p) place(p, filter_of(p));
     }
 
-    /// The moving box at `position` (held, or the next position of the list) is now of class c.
-    void place(Slot position, std::size_t c) { members_.move(position, static_cast<std::uint8_t>(c)); }
-    /// The list swap-removed position p: the box at `last` now sits at p.
-    void swap_remove(Slot p, Slot last) { members_.swap_remove(p, last); }
+    /// Brings the classes to `filters`, position i being the box it was at the last call (the
+    /// Detector's rule for its persistent cuts); returns split().
+    bool follow(std::span<const Filter> filters) {
+        for (const Filter& f : filters) {
+            if (filter_interacts(f) && !classes_.knows(f)) {
+                build(filters.size(), [&](std::size_t i) { return filters[i]; });
+                return split();
+            }
+        }
+        if (!split()) return false;
+        members_.resize(filters.size());  // indices past the array's end have left it
+        for (std::size_t i = 0; i < filters.size(); ++i) place(i, filters[i]);
+        return true;
+    }
 
-    /// Gathers each class's boxes, in the order of its members: the positions of `moving`,
-    /// slots of `store` with filters[slot].
-    void gather(const BoxStore<Real, Dim>& store, std::span<const Slot> moving, std::span<const Filter> filters,
-                const InteractionClasses& classes) {
-        for (std::size_t c = 0; c < classes_.size(); ++c) {
-            ClassDetection& detection = classes_[c];
+    /// The box at position p (held, or the next position) now has filter f. A value the classes
+    /// do not know places it in none: the classes are to be built again before the next
+    /// detection.
+    void place(std::size_t p, const Filter& f) {
+        if (!split()) return;
+        const bool in = filter_interacts(f) && classes_.knows(f);
+        members_.move(p, in ? static_cast<std::uint8_t>(classes_.class_of(f)) : ClassMembers::kNone);
+    }
+    /// The positions were swap-removed at p: the box at `last` (the last) now sits at p.
+    void swap_remove(std::size_t p, std::size_t last) {
+        if (split()) members_.swap_remove(p, last);
+    }
+
+    /// Gathers each class's boxes, in the order of its members: box_of(p) and info_of(p) (its
+    /// reported id and its filter) for the box at position p.
+    template <class BoxOf, class InfoOf>
+    void gather(BoxOf&& box_of, InfoOf&& info_of) {
+        for (std::size_t c = 0; c < detections_.size(); ++c) {
+            Detection& detection = detections_[c];
             const std::span<const std::uint32_t> members = members_.members(c);
-            const std::size_t n = classes.pairs_within(c) ? members.size() : 0;
+            const std::size_t n = classes_.pairs_within(c) ? members.size() : 0;
             detection.boxes.resize(n);
             detection.info.resize(n);
             detection.keys.resize(n);
             detection.packed = true;
             for (std::size_t k = 0; k < n; ++k) {
-                const Slot s = moving[members[k]];
-                const IdFilter info{store.id_at(s), filters[s]};
-                detection.boxes[k] = store.box_at(s);
+                const IdFilter info = info_of(members[k]);
+                detection.boxes[k] = box_of(members[k]);
                 detection.info[k] = info;
                 detection.keys[k] = packed_key(info.id, info.filter);
                 detection.packed = detection.packed && packable(info.id, info.filter);
@@ -82,17 +117,17 @@ public:
         }
     }
 
-    /// Reports the pairs of every class that passes, through the predicate if not null. The
-    /// stats of the passes add up over the classes.
+    /// Reports the pairs of every class that pass `rules`. The stats of the passes add up over
+    /// the classes.
     template <class Output>
-    void detect(const DetectionSettings& settings, double skin, Output& output, const PairPredicate* predicate,
+    void detect(const DetectionSettings& settings, double skin, Output& output, const PairRules& rules,
                 DetectStats& stats, DetectProfile& profile) {
-        for (ClassDetection& c : classes_) {
+        for (Detection& c : detections_) {
             if (c.boxes.empty()) {
                 c.engine.clear();
                 continue;
             }
-            detect_gathered<Real, Dim>(c.engine, c.boxes, c.keys, c.info, c.packed, settings, skin, output, predicate,
+            detect_gathered<Real, Dim>(c.engine, c.boxes, c.keys, c.info, c.packed, settings, skin, output, rules,
                                        stats, profile);
         }
     }
@@ -100,7 +135,7 @@ public:
     /// Doubles where any class holds doubles; none where no class was detected.
     [[nodiscard]] HeldPrecision precision() const noexcept {
         HeldPrecision held = HeldPrecision::none;
-        for (const ClassDetection& c : classes_) {
+        for (const Detection& c : detections_) {
             if (c.engine.precision() == HeldPrecision::doubles) return HeldPrecision::doubles;
             if (c.engine.precision() != HeldPrecision::none) held = c.engine.precision();
         }
@@ -108,12 +143,16 @@ public:
     }
     [[nodiscard]] std::size_t retested() const noexcept {
         std::size_t n = 0;
-        for (const ClassDetection& c : classes_) n += c.engine.retested();
+        for (const Detection& c : detections_) n += c.engine.retested();
         return n;
     }
+
+    /// Forgets the classes, their members and their engines.
+    void clear() { *this = ClassDetections(); }
+
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        std::size_t bytes = classes_.capacity() * sizeof(ClassDetection) + members_.bytes_held();
-        for (const ClassDetection& c : classes_) {
+        std::size_t bytes = classes_.bytes_held() + detections_.capacity() * sizeof(Detection) + members_.bytes_held();
+        for (const Detection& c : detections_) {
             bytes += c.engine.bytes_held() + c.boxes.capacity() * sizeof(Box<Real, Dim>) +
                      c.info.capacity() * sizeof(IdFilter) + c.keys.capacity() * sizeof(BoxId);
         }
@@ -121,7 +160,7 @@ public:
     }
 
 private:
-    struct ClassDetection {
+    struct Detection {
         DetectionEngine<Real, Dim> engine;
         std::vector<Box<Real, Dim>> boxes;
         std::vector<IdFilter> info;  // index i's id and filter
@@ -129,8 +168,9 @@ private:
         bool packed = true;
     };
 
-    std::vector<ClassDetection> classes_;
-    ClassMembers members_;
+    InteractionClasses classes_;
+    std::vector<Detection> detections_;  // one per class where split()
+    ClassMembers members_;               // the positions by class, where split()
 };
 
 }  // namespace smb::detail

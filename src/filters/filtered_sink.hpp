@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/pair_output.hpp"
+#include "filters/filtered_report.hpp"
 #include "smb/errors.hpp"
 #include "smb/filter.hpp"
 #include "smb/pair.hpp"
@@ -57,15 +58,13 @@ class FilteredSink {
 public:
     /// `origin` empty: the detection ran over the caller's array; otherwise over the boxes
     /// gathered from it, index i being the caller's origin[i] (in any order).
-    /// `test_bits` false: every pair handed over passes the filter bits (an interaction class whose
-    /// values all pass each other), and only the static flags and the predicate are tested.
     FilteredSink(const DetectFilters& filters, const PairSink& sink, std::size_t chunk_size,
-                 std::span<const std::uint32_t> origin = {}, bool test_bits = true)
-        : filters_(filters),
+                 std::span<const std::uint32_t> origin)
+        : filters_(filters.filters),
+          rules_{filters.statics, filters.predicate ? &filters.predicate : nullptr},
           sink_(sink),
           chunk_size_(chunk_size),
-          origin_(origin),
-          test_bits_(test_bits && !filters.filters.empty()) {
+          origin_(origin) {
         kept_.reserve(chunk_size_);
     }
 
@@ -86,9 +85,7 @@ public:
 
 private:
     [[nodiscard]] bool passes(const Pair& p) const {
-        if (!filters_.statics.empty() && filters_.statics[p.a] != 0 && filters_.statics[p.b] != 0) return false;
-        if (test_bits_ && !filters_pass(filters_.filters[p.a], filters_.filters[p.b])) return false;
-        return !filters_.predicate || filters_.predicate(p.a, p.b);
+        return (filters_.empty() || filters_pass(filters_[p.a], filters_[p.b])) && rules_.pass(p.a, p.b);
     }
 
     void send() {
@@ -97,11 +94,11 @@ private:
         kept_.clear();
     }
 
-    const DetectFilters& filters_;
+    std::span<const Filter> filters_;
+    PairRules rules_;
     const PairSink& sink_;
     std::size_t chunk_size_;
     std::span<const std::uint32_t> origin_;
-    bool test_bits_;
     std::vector<Pair> kept_;
     std::size_t passed_ = 0;
 };
