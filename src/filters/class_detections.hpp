@@ -29,21 +29,52 @@
 
 namespace smb::detail {
 
-/// Detects `boxes` (valid) with `engine`, each pair passing the filters and `rules` on its way to
-/// `output`: by the boxes' packed keys where `packed`, otherwise by index into `info`.
-template <std::floating_point Real, int Dim, class Output>
-void detect_gathered(DetectionEngine<Real, Dim>& engine, std::span<const Box<Real, Dim>> boxes,
-                     std::span<const BoxId> keys, std::span<const IdFilter> info, bool packed,
-                     const DetectionSettings& settings, double skin, Output& output, const PairRules& rules,
-                     DetectStats& stats, DetectProfile& profile) {
-    if (packed) {
-        PackedFilterReport<Output> report(output, rules);
-        engine.detect({boxes, keys, nullptr, true}, settings, skin, report, stats, profile);
-    } else {
-        FilteredReport<Output> report(output, info, rules);
-        engine.detect({boxes, {}, nullptr, true}, settings, skin, report, stats, profile);
+/// Boxes gathered for one detection engine, index k reported under its id in info[k]: a class
+/// of boxes, or all the moving boxes of a World whose filters make one class.
+template <std::floating_point Real, int Dim>
+struct GatheredDetection {
+    DetectionEngine<Real, Dim> engine;
+    std::vector<Box<Real, Dim>> boxes;
+    std::vector<IdFilter> info;  // index k's id and filter
+    std::vector<BoxId> keys;     // index k's key for the pipeline, when packed
+    bool packed = true;
+
+    /// n boxes: box_of(k) and info_of(k) for index k.
+    template <class BoxOf, class InfoOf>
+    void gather(std::size_t n, BoxOf&& box_of, InfoOf&& info_of) {
+        boxes.resize(n);
+        info.resize(n);
+        keys.resize(n);
+        packed = true;
+        for (std::size_t k = 0; k < n; ++k) {
+            info[k] = info_of(k);
+            boxes[k] = box_of(k);
+            keys[k] = packed_key(info[k].id, info[k].filter);
+            packed = packed && packable(info[k].id, info[k].filter);
+        }
     }
-}
+
+    /// Reports the pairs of the boxes that pass the filters and `rules`: by the packed keys
+    /// where every box has one, otherwise by index into `info`.
+    template <class Output>
+    void detect(const DetectionSettings& settings, double skin, Output& output, const PairRules& rules,
+                DetectStats& stats, DetectProfile& profile) {
+        if (boxes.empty()) {
+            engine.clear();
+        } else if (packed) {
+            PackedFilterReport<Output> report(output, rules);
+            engine.detect({boxes, keys, nullptr, true}, settings, skin, report, stats, profile);
+        } else {
+            FilteredReport<Output> report(output, info, rules);
+            engine.detect({boxes, {}, nullptr, true}, settings, skin, report, stats, profile);
+        }
+    }
+
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        return engine.bytes_held() + boxes.capacity() * sizeof(Box<Real, Dim>) + info.capacity() * sizeof(IdFilter) +
+               keys.capacity() * sizeof(BoxId);
+    }
+};
 
 template <std::floating_point Real, int Dim>
 class ClassDetections {
@@ -100,20 +131,10 @@ public:
     template <class BoxOf, class InfoOf>
     void gather(BoxOf&& box_of, InfoOf&& info_of) {
         for (std::size_t c = 0; c < detections_.size(); ++c) {
-            Detection& detection = detections_[c];
             const std::span<const std::uint32_t> members = members_.members(c);
-            const std::size_t n = classes_.pairs_within(c) ? members.size() : 0;
-            detection.boxes.resize(n);
-            detection.info.resize(n);
-            detection.keys.resize(n);
-            detection.packed = true;
-            for (std::size_t k = 0; k < n; ++k) {
-                const IdFilter info = info_of(members[k]);
-                detection.boxes[k] = box_of(members[k]);
-                detection.info[k] = info;
-                detection.keys[k] = packed_key(info.id, info.filter);
-                detection.packed = detection.packed && packable(info.id, info.filter);
-            }
+            detections_[c].gather(
+                classes_.pairs_within(c) ? members.size() : 0, [&](std::size_t k) { return box_of(members[k]); },
+                [&](std::size_t k) { return info_of(members[k]); });
         }
     }
 
@@ -122,14 +143,7 @@ public:
     template <class Output>
     void detect(const DetectionSettings& settings, double skin, Output& output, const PairRules& rules,
                 DetectStats& stats, DetectProfile& profile) {
-        for (Detection& c : detections_) {
-            if (c.boxes.empty()) {
-                c.engine.clear();
-                continue;
-            }
-            detect_gathered<Real, Dim>(c.engine, c.boxes, c.keys, c.info, c.packed, settings, skin, output, rules,
-                                       stats, profile);
-        }
+        for (Detection& c : detections_) c.detect(settings, skin, output, rules, stats, profile);
     }
 
     /// Doubles where any class holds doubles; none where no class was detected.
@@ -152,21 +166,12 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes = classes_.bytes_held() + detections_.capacity() * sizeof(Detection) + members_.bytes_held();
-        for (const Detection& c : detections_) {
-            bytes += c.engine.bytes_held() + c.boxes.capacity() * sizeof(Box<Real, Dim>) +
-                     c.info.capacity() * sizeof(IdFilter) + c.keys.capacity() * sizeof(BoxId);
-        }
+        for (const Detection& c : detections_) bytes += c.bytes_held();
         return bytes;
     }
 
 private:
-    struct Detection {
-        DetectionEngine<Real, Dim> engine;
-        std::vector<Box<Real, Dim>> boxes;
-        std::vector<IdFilter> info;  // index i's id and filter
-        std::vector<BoxId> keys;     // index i's key for the pipeline, when packed
-        bool packed = true;
-    };
+    using Detection = GatheredDetection<Real, Dim>;
 
     InteractionClasses classes_;
     std::vector<Detection> detections_;  // one per class where split()

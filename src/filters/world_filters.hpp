@@ -52,10 +52,10 @@ public:
         return slot < statics_flag_.size() && statics_flag_[slot];
     }
     [[nodiscard]] HeldPrecision precision() const noexcept {
-        return classes_.split() ? classes_.precision() : engine_.precision();
+        return classes_.split() ? classes_.precision() : moving_boxes_.engine.precision();
     }
     [[nodiscard]] std::size_t retested() const noexcept {
-        return classes_.split() ? classes_.retested() : engine_.retested();
+        return classes_.split() ? classes_.retested() : moving_boxes_.engine.retested();
     }
 
     void set_filter(Slot slot, const Filter& filter, std::size_t slot_count) {
@@ -111,16 +111,13 @@ public:
     /// Gives back everything the filtered detection held; the filters, statics and predicate
     /// are kept (a detection that finds none in use calls it and runs the default path).
     void disengage() {
-        engine_.clear();
+        moving_boxes_ = {};
         grid_.clear();
         contacts_.clear();
         classes_.clear();
         classes_stale_ = true;
         std::vector<Slot>().swap(moving_);
         std::vector<Slot>().swap(position_);
-        std::vector<Box<Real, Dim>>().swap(gathered_);
-        std::vector<BoxId>().swap(gathered_keys_);
-        std::vector<IdFilter>().swap(gathered_info_);
         known_ = 0;
         engaged_ = false;
         statics_changed_ = true;
@@ -168,9 +165,8 @@ public:
         if (classes_.split())
             classes_.detect(settings, skin, output, rules, stats, profile);
         else
-            detect_gathered<Real, Dim>(engine_, gathered_, gathered_keys_, gathered_info_, packed_, settings, skin,
-                                       output, rules, stats, profile);
-        contacts_.detect(gathered_, gathered_info_, grid_, rules, output);
+            moving_boxes_.detect(settings, skin, output, rules, stats, profile);
+        contacts_.detect(moving_boxes_.boxes, moving_boxes_.info, grid_, rules, output);
         stats.statics_rebuilt = statics_rebuilt;
         stats.static_refreshed = contacts_.refreshed();
         stats.static_contacts = contacts_.cached();
@@ -179,9 +175,7 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return filters_.capacity() * sizeof(Filter) + statics_flag_.capacity() +
                (pending_.capacity() + moving_.capacity() + position_.capacity()) * sizeof(Slot) +
-               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_keys_.capacity() * sizeof(BoxId) +
-               gathered_info_.capacity() * sizeof(IdFilter) + engine_.bytes_held() + grid_.bytes_held() +
-               contacts_.bytes_held() + classes_.bytes_held();
+               moving_boxes_.bytes_held() + grid_.bytes_held() + contacts_.bytes_held() + classes_.bytes_held();
     }
 
 private:
@@ -191,7 +185,7 @@ private:
         classes_.build(moving_.size(), [&](std::size_t i) { return filters_[moving_[i]]; });
         classes_stale_ = false;
         since_classes_ = 0;
-        if (classes_.split()) engine_.clear();
+        if (classes_.split()) moving_boxes_.engine.clear();
     }
 
     void grow(std::size_t slot_count) {
@@ -287,38 +281,12 @@ private:
     }
 
     void gather(const BoxStore<Real, Dim>& store) {
-        if (classes_.split()) {
-            classes_.gather([&](std::size_t p) { return store.box_at(moving_[p]); },
-                            [&](std::size_t p) {
-                                return IdFilter{store.id_at(moving_[p]), filters_[moving_[p]]};
-                            });
-            // The statics' caches follow the list of moving boxes, position by position.
-            if (grid_.empty()) {
-                gathered_.clear();
-                gathered_info_.clear();
-                return;
-            }
-        }
-        gathered_.resize(moving_.size());
-        gathered_info_.resize(moving_.size());
-        packed_ = true;
-        for (std::size_t i = 0; i < moving_.size(); ++i) {
-            const Slot s = moving_[i];
-            gathered_[i] = store.box_at(s);
-            gathered_info_[i] = IdFilter{store.id_at(s), filters_[s]};
-            packed_ = packed_ && packable(gathered_info_[i].id, filters_[s]);
-        }
-        if (!packed_) {
-            std::vector<BoxId>().swap(gathered_keys_);
-            return;
-        }
-        if (classes_.split()) {
-            std::vector<BoxId>().swap(gathered_keys_);  // the classes hold their own keys
-            return;
-        }
-        gathered_keys_.resize(moving_.size());
-        for (std::size_t i = 0; i < moving_.size(); ++i)
-            gathered_keys_[i] = packed_key(gathered_info_[i].id, gathered_info_[i].filter);
+        const auto box_of = [&](std::size_t p) { return store.box_at(moving_[p]); };
+        const auto info_of = [&](std::size_t p) { return IdFilter{store.id_at(moving_[p]), filters_[moving_[p]]}; };
+        if (classes_.split()) classes_.gather(box_of, info_of);
+        // The statics' caches follow the list of moving boxes, position by position.
+        const bool whole = !classes_.split() || !grid_.empty();
+        moving_boxes_.gather(whole ? moving_.size() : 0, box_of, info_of);
     }
 
     // Per slot of the store (grown to its slot count on demand; a missing entry is the default).
@@ -335,11 +303,7 @@ private:
     bool engaged_ = false;
     bool statics_changed_ = true;
 
-    std::vector<Box<Real, Dim>> gathered_;
-    std::vector<IdFilter> gathered_info_;  // index i's id and filter
-    std::vector<BoxId> gathered_keys_;     // index i's key for the pipeline, when packed_
-    bool packed_ = false;
-    DetectionEngine<Real, Dim> engine_;
+    GatheredDetection<Real, Dim> moving_boxes_;  // all of them, where one class or the statics' caches want them
     StaticGrid<Real, Dim> grid_;
     StaticContacts<Real, Dim> contacts_;
     ClassDetections<Real, Dim> classes_;
