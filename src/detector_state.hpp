@@ -59,8 +59,6 @@ public:
         std::vector<Pair>().swap(candidate_pairs_);
         engine_.clear();
         periodic_.reset();
-        std::vector<Box<Real, Dim>>().swap(gathered_);
-        std::vector<std::uint32_t>().swap(gathered_origin_);
         classes_.clear();
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
@@ -83,31 +81,27 @@ public:
     }
 
     /// The detection with filters (smb/filter.hpp), `filters` checked against `boxes`. Where the
-    /// filters make interaction classes, each is detected apart by the filter layer a World uses
-    /// too (filters/class_detections.hpp); otherwise the pairs pass through the filtered sink
-    /// (filters/filtered_sink.hpp), and the boxes that pair with nothing stay out of the
-    /// detection. The skin's candidates then name the boxes gathered, not the caller's: none
-    /// are offered.
+    /// filters make two interaction classes or more, or leave some boxes out of their one class,
+    /// the filter layer that a World uses too detects each class apart
+    /// (filters/class_detections.hpp); the skin's candidates then name the boxes gathered, not
+    /// the caller's, and none are offered. Otherwise the caller's array is detected as it is, its
+    /// pairs passing through the filtered sink (filters/filtered_sink.hpp).
     DetectStats detect_filtered(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters,
                                 const PairSink& sink) {
         if (!filters_in_use(filters)) return detect(boxes, sink);
-        // The boxes are checked first, so that an invalid one is named by its index in the
-        // caller's array.
-        bool gathered = false;
         if (!filters.filters.empty()) {
             const Stopwatch whole;
+            // The boxes are checked first, so that an invalid one is named by its index in the
+            // caller's array.
             (void)checked_bounds(boxes);
-            if (classes_.follow(filters.filters)) return detect_split(boxes, filters, sink, whole);
-            classes_.clear();
-            gathered = gather_interacting(boxes, filters.filters, gathered_, gathered_origin_);
+            classes_.follow(filters.filters);
+            if (classes_.classes().count() != 1 || classes_.placed() < boxes.size())
+                return detect_by_classes(boxes, filters, sink, whole);
         }
-        const std::span<const std::uint32_t> origin =
-            gathered ? std::span<const std::uint32_t>(gathered_origin_) : std::span<const std::uint32_t>();
-        FilteredSink filtered(filters, sink, settings_.pair_chunk_size, origin);
-        detect(gathered ? std::span<const Box<Real, Dim>>(gathered_) : boxes, PairSink(std::ref(filtered)));
+        FilteredSink filtered(filters, sink, settings_.pair_chunk_size);
+        detect(boxes, PairSink(std::ref(filtered)));
         stats_.boxes = boxes.size();
         stats_.pairs = filtered.finish();
-        if (gathered) skin_detected_ = false;
         return stats_;
     }
 
@@ -129,14 +123,13 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return sizeof(*this) + engine_.bytes_held() + (chunk_.capacity() + candidate_pairs_.capacity()) * sizeof(Pair) +
-               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t) +
                classes_.bytes_held() + (periodic_ ? sizeof(PeriodicPath<Real, Dim>) + periodic_->bytes_held() : 0);
     }
 
 private:
     /// The filtered detection class by class, the classes following `filters` already.
-    DetectStats detect_split(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters, const PairSink& sink,
-                             const Stopwatch& whole) {
+    DetectStats detect_by_classes(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters,
+                                  const PairSink& sink, const Stopwatch& whole) {
         engine_.clear();
         skin_detected_ = false;
         DetectStats stats;
@@ -165,9 +158,7 @@ private:
     DetectStats stats_;
     DetectProfile profile_;  // all zero unless settings_.profile
     std::vector<Pair> chunk_;
-    std::vector<Box<Real, Dim>> gathered_;
-    std::vector<std::uint32_t> gathered_origin_;
-    ClassDetections<Real, Dim> classes_;
+    ClassDetections<Real, Dim> classes_{1};
     bool skin_detected_ = false;     // the last detection ran on the skin list, and returned
     bool candidates_ready_ = false;  // candidate_pairs_ and candidate_margin_ are its own
     std::vector<Pair> candidate_pairs_;

@@ -11,7 +11,10 @@
 //
 // The boxes are known by position: a World places the positions of its list of moving boxes as
 // they change (world_filters.hpp), a Detector brings the caller's indices to their filters at
-// every call (follow()).
+// every call (follow()). A World detects its moving boxes by classes where there are two
+// classes or more (its one class is all its moving boxes, gathered whole); a Detector where
+// there are two, or where some boxes are left out of its one class (otherwise it detects the
+// caller's array itself, and offers the skin's candidates).
 
 #include <cstddef>
 #include <cstdint>
@@ -79,9 +82,18 @@ struct GatheredDetection {
 template <std::floating_point Real, int Dim>
 class ClassDetections {
 public:
+    /// The classes hold their members and engines from `least` classes on.
+    explicit ClassDetections(std::size_t least) : least_(least) {}
+
     [[nodiscard]] const InteractionClasses& classes() const noexcept { return classes_; }
-    /// Whether the boxes are detected class by class.
-    [[nodiscard]] bool split() const noexcept { return classes_.count() > 1; }
+    /// Whether the classes hold their members and engines: the boxes may be detected by classes.
+    [[nodiscard]] bool split() const noexcept { return classes_.count() >= least_; }
+    /// Positions in a class: all of them where every box can pair with something.
+    [[nodiscard]] std::size_t placed() const noexcept {
+        std::size_t n = 0;
+        for (std::size_t c = 0; c < detections_.size(); ++c) n += members_.members(c).size();
+        return n;
+    }
 
     /// New classes from the values filter_of(p) of positions [0, n), every position placed in
     /// its class; the classes' engines start afresh.
@@ -162,7 +174,7 @@ public:
     }
 
     /// Forgets the classes, their members and their engines.
-    void clear() { *this = ClassDetections(); }
+    void clear() { *this = ClassDetections(least_); }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes = classes_.bytes_held() + detections_.capacity() * sizeof(Detection) + members_.bytes_held();
@@ -173,6 +185,7 @@ public:
 private:
     using Detection = GatheredDetection<Real, Dim>;
 
+    std::size_t least_;
     InteractionClasses classes_;
     std::vector<Detection> detections_;  // one per class where split()
     ClassMembers members_;               // the positions by class, where split()

@@ -306,7 +306,7 @@ private:
     GatheredDetection<Real, Dim> moving_boxes_;  // all of them, where one class or the statics' caches want them
     StaticGrid<Real, Dim> grid_;
     StaticContacts<Real, Dim> contacts_;
-    ClassDetections<Real, Dim> classes_;
+    ClassDetections<Real, Dim> classes_{2};
     bool classes_stale_ = true;  // a filter value the classes do not know came in
     std::size_t since_classes_ = 0;
 };
