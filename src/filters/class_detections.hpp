@@ -113,16 +113,16 @@ public:
     /// Brings the classes to `filters`, position i being the box it was at the last call (the
     /// Detector's rule for its persistent cuts); returns split().
     bool follow(std::span<const Filter> filters) {
-        for (const Filter& f : filters) {
-            if (filter_interacts(f) && !classes_.knows(f)) {
-                build(filters.size(), [&](std::size_t i) { return filters[i]; });
+        if (split()) members_.resize(filters.size());  // indices past the array's end have left it
+        for (std::size_t i = 0; i < filters.size(); ++i) {
+            const std::uint8_t c = class_of(filters[i]);
+            if (c == kUnknown) {
+                build(filters.size(), [&](std::size_t k) { return filters[k]; });
                 return split();
             }
+            if (split()) members_.move(i, c);
         }
-        if (!split()) return false;
-        members_.resize(filters.size());  // indices past the array's end have left it
-        for (std::size_t i = 0; i < filters.size(); ++i) place(i, filters[i]);
-        return true;
+        return split();
     }
 
     /// The box at position p (held, or the next position) now has filter f. A value the classes
@@ -130,8 +130,8 @@ public:
     /// detection.
     void place(std::size_t p, const Filter& f) {
         if (!split()) return;
-        const bool in = filter_interacts(f) && classes_.knows(f);
-        members_.move(p, in ? static_cast<std::uint8_t>(classes_.class_of(f)) : ClassMembers::kNone);
+        const std::uint8_t c = class_of(f);
+        members_.move(p, c == kUnknown ? ClassMembers::kNone : c);
     }
     /// The positions were swap-removed at p: the box at `last` (the last) now sits at p.
     void swap_remove(std::size_t p, std::size_t last) {
@@ -184,6 +184,14 @@ public:
 
 private:
     using Detection = GatheredDetection<Real, Dim>;
+    static constexpr std::uint8_t kUnknown = InteractionClasses::kUnknown;
+    static_assert(ClassMembers::kNone != kUnknown);
+
+    /// The class of a box with filter f: ClassMembers::kNone where it pairs with nothing,
+    /// kUnknown where the classes do not know its value.
+    [[nodiscard]] std::uint8_t class_of(const Filter& f) const noexcept {
+        return filter_interacts(f) ? classes_.class_of(f) : ClassMembers::kNone;
+    }
 
     std::size_t least_;
     InteractionClasses classes_;

@@ -28,6 +28,7 @@ namespace smb::detail {
 class InteractionClasses {
 public:
     static constexpr std::size_t kMaxValues = 64;
+    static constexpr std::uint8_t kUnknown = 0xFE;  // never a class: there are at most kMaxValues
 
     /// Classes of the filter values of the boxes: filter_of(i) for i in [0, n). A value whose
     /// category or mask is 0 pairs with nothing and belongs to no class.
@@ -103,9 +104,11 @@ public:
     [[nodiscard]] bool overflowed() const noexcept { return overflowed_; }
     /// Whether the classes know the value (after an overflow, every value is in the one class).
     [[nodiscard]] bool knows(const Filter& f) const noexcept { return overflowed_ || find(f) != kMissing; }
-    /// The class of a value the classes know.
-    [[nodiscard]] std::size_t class_of(const Filter& f) const noexcept {
-        return overflowed_ ? 0 : value_class_[find(f)];
+    /// The class of a value, or kUnknown where the classes do not know it.
+    [[nodiscard]] std::uint8_t class_of(const Filter& f) const noexcept {
+        if (overflowed_) return 0;
+        const std::uint8_t value = find(f);
+        return value == kMissing ? kUnknown : value_class_[value];
     }
     /// Whether two boxes of class c may pair (some two of its values pass, one with itself
     /// included).
