@@ -15,7 +15,7 @@
 #include "core/settings_check.hpp"
 #include "core/stopwatch.hpp"
 #include "engine/detection_engine.hpp"
-#include "filters/detector_classes.hpp"
+#include "filters/class_detections.hpp"
 #include "filters/filtered_sink.hpp"
 #include "periodic/periodic_path.hpp"
 #include "smb/candidate_pairs.hpp"
@@ -59,8 +59,6 @@ public:
         std::vector<Pair>().swap(candidate_pairs_);
         engine_.clear();
         periodic_.reset();
-        std::vector<Box<Real, Dim>>().swap(gathered_);
-        std::vector<std::uint32_t>().swap(gathered_origin_);
         classes_.clear();
         std::vector<Pair>().swap(chunk_);
         stats_ = {};
@@ -82,37 +80,28 @@ public:
         return finish(stats, profile, whole);
     }
 
-    /// The detection with filters (smb/filter.hpp), `filters` checked against `boxes`: the pairs
-    /// pass through the filtered sink (filters/filtered_sink.hpp). Where the filters make
-    /// interaction classes, each is detected apart (filters/detector_classes.hpp); otherwise the
-    /// boxes that pair with nothing stay out of the detection. The skin's candidates then name
-    /// the boxes gathered, not the caller's: none are offered.
+    /// The detection with filters (smb/filter.hpp), `filters` checked against `boxes`. Where the
+    /// filters make two interaction classes or more, or leave some boxes out of their one class,
+    /// the filter layer that a World uses too detects each class apart
+    /// (filters/class_detections.hpp); the skin's candidates then name the boxes gathered, not
+    /// the caller's, and none are offered. Otherwise the caller's array is detected as it is, its
+    /// pairs passing through the filtered sink (filters/filtered_sink.hpp).
     DetectStats detect_filtered(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters,
                                 const PairSink& sink) {
         if (!filters_in_use(filters)) return detect(boxes, sink);
-        // The boxes are checked first, so that an invalid one is named by its index in the
-        // caller's array.
-        bool gathered = false;
         if (!filters.filters.empty()) {
             const Stopwatch whole;
+            // The boxes are checked first, so that an invalid one is named by its index in the
+            // caller's array.
             (void)checked_bounds(boxes);
-            DetectStats split;
-            DetectProfile profile;
-            if (classes_.detect(boxes, filters, sink, settings_, split, profile)) {
-                engine_.clear();
-                skin_detected_ = false;
-                split.boxes = boxes.size();
-                return finish(split, profile, whole);
-            }
-            gathered = gather_interacting(boxes, filters.filters, gathered_, gathered_origin_);
+            classes_.follow(filters.filters);
+            if (classes_.classes().count() != 1 || classes_.placed() < boxes.size())
+                return detect_by_classes(boxes, filters, sink, whole);
         }
-        const std::span<const std::uint32_t> origin =
-            gathered ? std::span<const std::uint32_t>(gathered_origin_) : std::span<const std::uint32_t>();
-        FilteredSink filtered(filters, sink, settings_.pair_chunk_size, origin);
-        detect(gathered ? std::span<const Box<Real, Dim>>(gathered_) : boxes, PairSink(std::ref(filtered)));
+        FilteredSink filtered(filters, sink, settings_.pair_chunk_size);
+        detect(boxes, PairSink(std::ref(filtered)));
         stats_.boxes = boxes.size();
         stats_.pairs = filtered.finish();
-        if (gathered) skin_detected_ = false;
         return stats_;
     }
 
@@ -134,11 +123,27 @@ public:
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return sizeof(*this) + engine_.bytes_held() + (chunk_.capacity() + candidate_pairs_.capacity()) * sizeof(Pair) +
-               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_origin_.capacity() * sizeof(std::uint32_t) +
                classes_.bytes_held() + (periodic_ ? sizeof(PeriodicPath<Real, Dim>) + periodic_->bytes_held() : 0);
     }
 
 private:
+    /// The filtered detection class by class, the classes following `filters` already.
+    DetectStats detect_by_classes(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters,
+                                  const PairSink& sink, const Stopwatch& whole) {
+        engine_.clear();
+        skin_detected_ = false;
+        DetectStats stats;
+        DetectProfile profile;
+        stats.boxes = boxes.size();
+        const std::span<const Filter> filter = filters.filters;
+        classes_.gather([&](std::size_t i) { return boxes[i]; }, [&](std::size_t i) { return IdFilter{i, filter[i]}; });
+        PairOutput output{chunk_, settings_.pair_chunk_size, sink, stats.pairs};
+        const PairRules rules{filters.statics, filters.predicate ? &filters.predicate : nullptr};
+        classes_.detect(settings_, settings_.skin, output, rules, stats, profile);
+        output.flush();
+        return finish(stats, profile, whole);
+    }
+
     /// What every detection closes with, whichever path it took.
     DetectStats finish(DetectStats stats, const DetectProfile& profile, const Stopwatch& whole) {
         stats.bytes_held = bytes_held();
@@ -153,9 +158,7 @@ private:
     DetectStats stats_;
     DetectProfile profile_;  // all zero unless settings_.profile
     std::vector<Pair> chunk_;
-    std::vector<Box<Real, Dim>> gathered_;
-    std::vector<std::uint32_t> gathered_origin_;
-    DetectorClasses<Real, Dim> classes_;
+    ClassDetections<Real, Dim> classes_{1};
     bool skin_detected_ = false;     // the last detection ran on the skin list, and returned
     bool candidates_ready_ = false;  // candidate_pairs_ and candidate_margin_ are its own
     std::vector<Pair> candidate_pairs_;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The reports a pipeline calls when it runs over a gathered array of boxes (index i of the array
-// is one box): they test the filter bits and the predicate of each pair, and hand the pairs
+// is one box): they test the filter bits, the static flags and the predicate of each pair, and hand the pairs
 // that pass, under their ids, to the caller's output. The pipeline's own runs of pairs lose
 // their (a < b) order through the ids, so they are reported one by one.
 //
@@ -38,10 +38,25 @@ struct IdFilter {
     return id | (BoxId{f.category} << 32) | (BoxId{f.mask & 0xFFFFu} << 48);
 }
 
+/// What a pair takes after the filter bits: the static flags (a Detector's, by the ids it
+/// reports, which are its indices; empty for a World, whose statics stay out of its detection)
+/// and the predicate, if not null.
+struct PairRules {
+    std::span<const std::uint8_t> statics;
+    const PairPredicate* predicate = nullptr;
+
+    [[nodiscard]] bool pass(BoxId a, BoxId b) const {
+        if (!statics.empty() && statics[a] != 0 && statics[b] != 0) return false;
+        if (predicate == nullptr) return true;
+        const Pair pair = ordered_pair(a, b);
+        return (*predicate)(pair.a, pair.b);
+    }
+};
+
 template <class Output>
 class PackedFilterReport {
 public:
-    PackedFilterReport(Output& output, const PairPredicate* predicate) : output_(output), predicate_(predicate) {}
+    PackedFilterReport(Output& output, const PairRules& rules) : output_(output), rules_(rules) {}
 
     [[gnu::always_inline]] inline void operator()(BoxId a, BoxId b) {
         const BoxId category_a = (a >> 32) & 0xFFFFu;
@@ -49,11 +64,7 @@ public:
         if ((category_a & (b >> 48)) == 0 || (category_b & (a >> 48)) == 0) return;
         const BoxId id_a = a & 0xFFFFFFFFu;
         const BoxId id_b = b & 0xFFFFFFFFu;
-        if (predicate_ != nullptr) {
-            const Pair pair = ordered_pair(id_a, id_b);
-            if (!(*predicate_)(pair.a, pair.b)) return;
-        }
-        output_(id_a, id_b);
+        if (rules_.pass(id_a, id_b)) output_(id_a, id_b);
     }
 
     void append(std::span<const Pair> pairs) {
@@ -62,24 +73,19 @@ public:
 
 private:
     Output& output_;
-    const PairPredicate* predicate_;
+    PairRules rules_;
 };
 
 template <class Output>
 class FilteredReport {
 public:
-    FilteredReport(Output& output, std::span<const IdFilter> boxes, const PairPredicate* predicate)
-        : output_(output), boxes_(boxes), predicate_(predicate) {}
+    FilteredReport(Output& output, std::span<const IdFilter> boxes, const PairRules& rules)
+        : output_(output), boxes_(boxes), rules_(rules) {}
 
     void operator()(BoxId a, BoxId b) {
         const IdFilter& x = boxes_[a];
         const IdFilter& y = boxes_[b];
-        if (!filters_pass(x.filter, y.filter)) return;
-        if (predicate_ != nullptr) {
-            const Pair pair = ordered_pair(x.id, y.id);
-            if (!(*predicate_)(pair.a, pair.b)) return;
-        }
-        output_(x.id, y.id);
+        if (filters_pass(x.filter, y.filter) && rules_.pass(x.id, y.id)) output_(x.id, y.id);
     }
 
     void append(std::span<const Pair> pairs) {
@@ -89,7 +95,7 @@ public:
 private:
     Output& output_;
     std::span<const IdFilter> boxes_;
-    const PairPredicate* predicate_;
+    PairRules rules_;
 };
 
 }  // namespace smb::detail

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// A Detector's filters, applied to the pairs of indices its detection hands over: the chunks
-// of the detection pass through here, and the pairs that pass the bits, the static flags and
-// the predicate go on to the caller's sink in chunks of their own. The detection itself is the
-// Detector's, unchanged; a filtered pair costs one test here. Boxes whose category or mask is 0
-// are left out of the detection (gather_interacting()): the detection then runs over the others,
-// gathered in their order, and the sink maps its indices back.
+// A Detector's filters, applied to the pairs of indices its detection of the caller's whole
+// array hands over (where every box can pair and the filters make one class, or only static
+// flags and a predicate are given; class_detections.hpp detects the others): the chunks of the
+// detection pass through here, and the pairs that pass the bits, the static flags and the
+// predicate go on to the caller's sink in chunks of their own. The detection itself is the
+// Detector's, unchanged, and so are its skin's candidates; a filtered pair costs one test here.
 
 #include <cstddef>
 #include <cstdint>
@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/pair_output.hpp"
+#include "filters/filtered_report.hpp"
 #include "smb/errors.hpp"
 #include "smb/filter.hpp"
 #include "smb/pair.hpp"
@@ -35,43 +36,18 @@ inline void check_filter_lengths(const DetectFilters& filters, std::size_t boxes
     return !filters.filters.empty() || !filters.statics.empty() || static_cast<bool>(filters.predicate);
 }
 
-/// Gathers the boxes that can pair with something into `gathered`, and their indices into
-/// `origin`, in order; returns false (and gathers nothing) when every box can.
-template <class Box>
-bool gather_interacting(std::span<const Box> boxes, std::span<const Filter> filters, std::vector<Box>& gathered,
-                        std::vector<std::uint32_t>& origin) {
-    gathered.clear();
-    origin.clear();
-    bool all = true;
-    for (const Filter& f : filters) all = all && filter_interacts(f);
-    if (all) return false;
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-        if (!filter_interacts(filters[i])) continue;
-        gathered.push_back(boxes[i]);
-        origin.push_back(static_cast<std::uint32_t>(i));
-    }
-    return true;
-}
-
 class FilteredSink {
 public:
-    /// `origin` empty: the detection ran over the caller's array; otherwise over the boxes
-    /// gathered from it, index i being the caller's origin[i] (in any order).
-    /// `test_bits` false: every pair handed over passes the filter bits (an interaction class whose
-    /// values all pass each other), and only the static flags and the predicate are tested.
-    FilteredSink(const DetectFilters& filters, const PairSink& sink, std::size_t chunk_size,
-                 std::span<const std::uint32_t> origin = {}, bool test_bits = true)
-        : filters_(filters),
+    FilteredSink(const DetectFilters& filters, const PairSink& sink, std::size_t chunk_size)
+        : filters_(filters.filters),
+          rules_{filters.statics, filters.predicate ? &filters.predicate : nullptr},
           sink_(sink),
-          chunk_size_(chunk_size),
-          origin_(origin),
-          test_bits_(test_bits && !filters.filters.empty()) {
+          chunk_size_(chunk_size) {
         kept_.reserve(chunk_size_);
     }
 
     void operator()(std::span<const Pair> pairs) {
-        for (Pair p : pairs) {
-            if (!origin_.empty()) p = ordered_pair(origin_[p.a], origin_[p.b]);
+        for (const Pair& p : pairs) {
             if (!passes(p)) continue;
             kept_.push_back(p);
             if (kept_.size() == chunk_size_) send();
@@ -86,9 +62,7 @@ public:
 
 private:
     [[nodiscard]] bool passes(const Pair& p) const {
-        if (!filters_.statics.empty() && filters_.statics[p.a] != 0 && filters_.statics[p.b] != 0) return false;
-        if (test_bits_ && !filters_pass(filters_.filters[p.a], filters_.filters[p.b])) return false;
-        return !filters_.predicate || filters_.predicate(p.a, p.b);
+        return (filters_.empty() || filters_pass(filters_[p.a], filters_[p.b])) && rules_.pass(p.a, p.b);
     }
 
     void send() {
@@ -97,11 +71,10 @@ private:
         kept_.clear();
     }
 
-    const DetectFilters& filters_;
+    std::span<const Filter> filters_;
+    PairRules rules_;
     const PairSink& sink_;
     std::size_t chunk_size_;
-    std::span<const std::uint32_t> origin_;
-    bool test_bits_;
     std::vector<Pair> kept_;
     std::size_t passed_ = 0;
 };

@@ -3,7 +3,7 @@
 // The moving boxes of a World split by what their filter bits let them meet: two filter values
 // are linked when their bits pass, and an interaction class is a set of values linked to each
 // other, directly or through others. No box of one class can pair with a box of another, so
-// each class is detected on its own (world_filters.hpp), and a class whose values pass with
+// each class is detected on its own (class_detections.hpp), and a class whose values pass with
 // none of its own (a set whose mask meets no category of the scene) is not detected at all: two
 // layers that ignore each other cost their two detections, not the one detection of all their
 // boxes in which the pairs across the layers are found and dropped.
@@ -28,6 +28,7 @@ namespace smb::detail {
 class InteractionClasses {
 public:
     static constexpr std::size_t kMaxValues = 64;
+    static constexpr std::uint8_t kUnknown = 0xFE;  // never a class: there are at most kMaxValues
 
     /// Classes of the filter values of the boxes: filter_of(i) for i in [0, n). A value whose
     /// category or mask is 0 pairs with nothing and belongs to no class.
@@ -50,7 +51,6 @@ public:
             overflowed_ = true;
             count_ = n == 0 ? 0 : 1;
             pairs_within_.assign(count_, true);
-            all_pass_within_.assign(count_, false);
             return;
         }
         // Union-find over the values, then classes numbered in the order of their first value.
@@ -75,15 +75,10 @@ public:
             }
             value_class_[v] = c;
         }
-        all_pass_within_.assign(count_, true);
         for (std::size_t i = 0; i < values_.size(); ++i) {
             for (std::size_t j = i; j < values_.size(); ++j) {
-                if (value_class_[i] != value_class_[j]) continue;
-                if (filters_pass(values_[i], values_[j])) {
+                if (value_class_[i] == value_class_[j] && filters_pass(values_[i], values_[j]))
                     pairs_within_[value_class_[i]] = true;
-                } else {
-                    all_pass_within_[value_class_[i]] = false;
-                }
             }
         }
     }
@@ -94,14 +89,13 @@ public:
         values_.clear();
         value_class_.clear();
         pairs_within_.clear();
-        all_pass_within_.clear();
         count_ = 0;
         overflowed_ = false;
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return slots_.capacity() * sizeof(Slot) + values_.capacity() * sizeof(Filter) + value_class_.capacity() +
-               (pairs_within_.capacity() + all_pass_within_.capacity()) / 8;
+               pairs_within_.capacity() / 8;
     }
 
     /// Classes (0 with no values; 1 after an overflow).
@@ -110,16 +104,15 @@ public:
     [[nodiscard]] bool overflowed() const noexcept { return overflowed_; }
     /// Whether the classes know the value (after an overflow, every value is in the one class).
     [[nodiscard]] bool knows(const Filter& f) const noexcept { return overflowed_ || find(f) != kMissing; }
-    /// The class of a value the classes know.
-    [[nodiscard]] std::size_t class_of(const Filter& f) const noexcept {
-        return overflowed_ ? 0 : value_class_[find(f)];
+    /// The class of a value, or kUnknown where the classes do not know it.
+    [[nodiscard]] std::uint8_t class_of(const Filter& f) const noexcept {
+        if (overflowed_) return 0;
+        const std::uint8_t value = find(f);
+        return value == kMissing ? kUnknown : value_class_[value];
     }
     /// Whether two boxes of class c may pair (some two of its values pass, one with itself
     /// included).
     [[nodiscard]] bool pairs_within(std::size_t c) const noexcept { return pairs_within_[c]; }
-    /// Whether every two boxes of class c pass the bits (each value with every value of c, itself
-    /// included): the pairs of such a class need no test of the bits.
-    [[nodiscard]] bool all_pass_within(std::size_t c) const noexcept { return all_pass_within_[c]; }
 
 private:
     static constexpr std::uint8_t kMissing = 0xFF;
@@ -156,7 +149,6 @@ private:
     std::vector<Filter> values_;
     std::vector<std::uint8_t> value_class_;
     std::vector<bool> pairs_within_;
-    std::vector<bool> all_pass_within_;
     std::size_t count_ = 0;
     bool overflowed_ = false;
 };

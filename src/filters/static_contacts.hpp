@@ -72,9 +72,9 @@ public:
     }
 
     /// Reports every pair of moving box i (boxes[i], with info[i]'s id and filter) and a static
-    /// that overlap and whose bits pass, through the predicate if there is one.
+    /// that overlap, whose bits pass and that pass `rules`.
     void detect(std::span<const Box<Real, Dim>> boxes, std::span<const IdFilter> info,
-                const StaticGrid<Real, Dim>& grid, const PairPredicate* predicate, PairOutput& output) {
+                const StaticGrid<Real, Dim>& grid, const PairRules& rules, PairOutput& output) {
         refreshed_ = 0;
         cached_ = 0;
         if (grid.empty()) return;
@@ -104,11 +104,7 @@ public:
             const BoxId a = info[i].id;
             for (std::uint32_t h = 0; h < found; ++h) {
                 const BoxId b = first[hits_[h]].id();
-                if (predicate != nullptr) {
-                    const Pair pair = ordered_pair(a, b);
-                    if (!(*predicate)(pair.a, pair.b)) continue;
-                }
-                output(a, b);
+                if (rules.pass(a, b)) output(a, b);
             }
         }
     }

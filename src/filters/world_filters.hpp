@@ -5,11 +5,11 @@
 // the filter words, the static flag and the position in the list of moving boxes. The moving
 // boxes that can pair with something (not static, category and mask not 0) are gathered, in the
 // order of that list, into one array and detected by a detection engine of their own
-// (engine/detection_engine.hpp), as a Detector detects an array; their pairs are filtered by index (filtered_report.hpp). The
-// statics stay out of it: each moving box meets them through its cache (static_contacts.hpp)
-// over a grid of the statics (static_grid.hpp), built again only when the statics change.
-// Where the filter values split the moving boxes into classes that cannot pair with each other
-// (interaction_classes.hpp), each class is detected on its own (class_detections.hpp) instead.
+// (engine/detection_engine.hpp), their pairs filtered on the way out (filtered_report.hpp); where
+// the filter values split them into classes that cannot pair with each other, the filter layer
+// that a Detector uses too detects each class on its own (class_detections.hpp). The statics
+// stay out of it: each moving box meets them through its cache (static_contacts.hpp) over a
+// grid of the statics (static_grid.hpp), built again only when the statics change.
 //
 // The list of moving boxes keeps each box at its position from one detection to the next (a box
 // that leaves it is swap-removed, a box that joins it is appended), so the pipeline sees the
@@ -30,7 +30,6 @@
 #include "engine/detection_engine.hpp"
 #include "filters/class_detections.hpp"
 #include "filters/filtered_report.hpp"
-#include "filters/interaction_classes.hpp"
 #include "filters/static_contacts.hpp"
 #include "filters/static_grid.hpp"
 #include "smb/filter.hpp"
@@ -45,8 +44,6 @@ public:
     /// Whether the next detection needs this path: a filter other than the default, a static
     /// box or a predicate.
     [[nodiscard]] bool wanted() const noexcept { return statics_ != 0 || non_default_ != 0 || predicate_; }
-    /// Whether the last detection ran this path.
-    [[nodiscard]] bool engaged() const noexcept { return engaged_; }
 
     [[nodiscard]] Filter filter_at(Slot slot) const noexcept {
         return slot < filters_.size() ? filters_[slot] : Filter{};
@@ -55,10 +52,10 @@ public:
         return slot < statics_flag_.size() && statics_flag_[slot];
     }
     [[nodiscard]] HeldPrecision precision() const noexcept {
-        return split() ? class_detections_.precision() : engine_.precision();
+        return classes_.split() ? classes_.precision() : moving_boxes_.engine.precision();
     }
     [[nodiscard]] std::size_t retested() const noexcept {
-        return split() ? class_detections_.retested() : engine_.retested();
+        return classes_.split() ? classes_.retested() : moving_boxes_.engine.retested();
     }
 
     void set_filter(Slot slot, const Filter& filter, std::size_t slot_count) {
@@ -69,7 +66,7 @@ public:
         non_default_ += (filter != Filter{} ? 1 : 0) - (held != Filter{} ? 1 : 0);
         held = filter;
         if (statics_flag_[slot]) statics_changed_ = true;
-        if (filter_interacts(filter) && !classes_.knows(filter)) classes_stale_ = true;
+        if (filter_interacts(filter) && !classes_.classes().knows(filter)) classes_stale_ = true;
         pending_.push_back(slot);
     }
 
@@ -114,17 +111,13 @@ public:
     /// Gives back everything the filtered detection held; the filters, statics and predicate
     /// are kept (a detection that finds none in use calls it and runs the default path).
     void disengage() {
-        engine_.clear();
+        moving_boxes_ = {};
         grid_.clear();
         contacts_.clear();
         classes_.clear();
-        class_detections_.clear();
         classes_stale_ = true;
         std::vector<Slot>().swap(moving_);
         std::vector<Slot>().swap(position_);
-        std::vector<Box<Real, Dim>>().swap(gathered_);
-        std::vector<BoxId>().swap(gathered_keys_);
-        std::vector<IdFilter>().swap(gathered_info_);
         known_ = 0;
         engaged_ = false;
         statics_changed_ = true;
@@ -162,19 +155,18 @@ public:
         grow(known_);
         const bool statics_rebuilt = statics_changed_;
         if (statics_changed_) rebuild_statics(store);
-        if (classes_stale_ || (classes_.overflowed() && ++since_classes_ >= tuning::filter_classes_every))
+        if (classes_stale_ || (classes_.classes().overflowed() && ++since_classes_ >= tuning::filter_classes_every))
             rebuild_classes();
         gather(store);
         profile.update_seconds = update.seconds();
         stats.boxes = store.slot_count();
 
-        const PairPredicate* predicate = predicate_ ? &predicate_ : nullptr;
-        if (split())
-            class_detections_.detect(settings, skin, output, predicate, stats, profile);
+        const PairRules rules{{}, predicate_ ? &predicate_ : nullptr};
+        if (classes_.split())
+            classes_.detect(settings, skin, output, rules, stats, profile);
         else
-            detect_gathered<Real, Dim>(engine_, gathered_, gathered_keys_, gathered_info_, packed_, settings, skin,
-                                       output, predicate, stats, profile);
-        contacts_.detect(gathered_, gathered_info_, grid_, predicate, output);
+            moving_boxes_.detect(settings, skin, output, rules, stats, profile);
+        contacts_.detect(moving_boxes_.boxes, moving_boxes_.info, grid_, rules, output);
         stats.statics_rebuilt = statics_rebuilt;
         stats.static_refreshed = contacts_.refreshed();
         stats.static_contacts = contacts_.cached();
@@ -183,28 +175,17 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return filters_.capacity() * sizeof(Filter) + statics_flag_.capacity() +
                (pending_.capacity() + moving_.capacity() + position_.capacity()) * sizeof(Slot) +
-               gathered_.capacity() * sizeof(Box<Real, Dim>) + gathered_keys_.capacity() * sizeof(BoxId) +
-               gathered_info_.capacity() * sizeof(IdFilter) + engine_.bytes_held() + grid_.bytes_held() +
-               contacts_.bytes_held() + classes_.bytes_held() + class_detections_.bytes_held();
+               moving_boxes_.bytes_held() + grid_.bytes_held() + contacts_.bytes_held() + classes_.bytes_held();
     }
 
 private:
     static constexpr Slot kNowhere = kNoSlot;
-    /// Whether the moving boxes are detected class by class.
-    [[nodiscard]] bool split() const noexcept { return classes_.count() > 1; }
 
     void rebuild_classes() {
         classes_.build(moving_.size(), [&](std::size_t i) { return filters_[moving_[i]]; });
         classes_stale_ = false;
         since_classes_ = 0;
-        if (split()) {
-            class_detections_.reset(classes_.count());
-            for (std::size_t i = 0; i < moving_.size(); ++i)
-                class_detections_.place(static_cast<Slot>(i), classes_.class_of(filters_[moving_[i]]));
-            engine_.clear();
-        } else {
-            class_detections_.clear();
-        }
+        if (classes_.split()) moving_boxes_.engine.clear();
     }
 
     void grow(std::size_t slot_count) {
@@ -220,19 +201,18 @@ private:
     void refresh_moving(Slot s, bool alive) {
         const bool in = position_[s] != kNowhere;
         const bool wanted = alive && moves(s);
-        const bool known = classes_.knows(filters_[s]);
-        if (wanted && !known) classes_stale_ = true;  // the rebuild gives every box its class
-        const std::size_t class_now = wanted && known ? classes_.class_of(filters_[s]) : 0;
+        // A value the classes do not know: the rebuild gives every box its class.
+        if (wanted && !classes_.classes().knows(filters_[s])) classes_stale_ = true;
         if (wanted && !in) {
             position_[s] = static_cast<Slot>(moving_.size());
             moving_.push_back(s);
-            if (split()) class_detections_.place(position_[s], class_now);
+            classes_.place(position_[s], filters_[s]);
             contacts_.push_back();
         } else if (!wanted && in) {
             remove_position(position_[s]);
         } else if (wanted) {
             contacts_.invalidate(position_[s]);
-            if (split()) class_detections_.place(position_[s], class_now);
+            classes_.place(position_[s], filters_[s]);
         }
     }
 
@@ -241,7 +221,7 @@ private:
     void remove_position(Slot p, bool forget_slot = true) {
         if (forget_slot) position_[moving_[p]] = kNowhere;
         const Slot last = moving_.back();
-        if (split()) class_detections_.swap_remove(p, static_cast<Slot>(moving_.size() - 1));
+        classes_.swap_remove(p, moving_.size() - 1);
         if (p + 1 != moving_.size()) {
             moving_[p] = last;
             position_[last] = p;
@@ -301,35 +281,12 @@ private:
     }
 
     void gather(const BoxStore<Real, Dim>& store) {
-        if (split()) {
-            class_detections_.gather(store, moving_, filters_, classes_);
-            // The statics' caches follow the list of moving boxes, position by position.
-            if (grid_.empty()) {
-                gathered_.clear();
-                gathered_info_.clear();
-                return;
-            }
-        }
-        gathered_.resize(moving_.size());
-        gathered_info_.resize(moving_.size());
-        packed_ = true;
-        for (std::size_t i = 0; i < moving_.size(); ++i) {
-            const Slot s = moving_[i];
-            gathered_[i] = store.box_at(s);
-            gathered_info_[i] = IdFilter{store.id_at(s), filters_[s]};
-            packed_ = packed_ && packable(gathered_info_[i].id, filters_[s]);
-        }
-        if (!packed_) {
-            std::vector<BoxId>().swap(gathered_keys_);
-            return;
-        }
-        if (split()) {
-            std::vector<BoxId>().swap(gathered_keys_);  // the classes hold their own keys
-            return;
-        }
-        gathered_keys_.resize(moving_.size());
-        for (std::size_t i = 0; i < moving_.size(); ++i)
-            gathered_keys_[i] = packed_key(gathered_info_[i].id, gathered_info_[i].filter);
+        const auto box_of = [&](std::size_t p) { return store.box_at(moving_[p]); };
+        const auto info_of = [&](std::size_t p) { return IdFilter{store.id_at(moving_[p]), filters_[moving_[p]]}; };
+        if (classes_.split()) classes_.gather(box_of, info_of);
+        // The statics' caches follow the list of moving boxes, position by position.
+        const bool whole = !classes_.split() || !grid_.empty();
+        moving_boxes_.gather(whole ? moving_.size() : 0, box_of, info_of);
     }
 
     // Per slot of the store (grown to its slot count on demand; a missing entry is the default).
@@ -346,17 +303,12 @@ private:
     bool engaged_ = false;
     bool statics_changed_ = true;
 
-    std::vector<Box<Real, Dim>> gathered_;
-    std::vector<IdFilter> gathered_info_;  // index i's id and filter
-    std::vector<BoxId> gathered_keys_;     // index i's key for the pipeline, when packed_
-    bool packed_ = false;
-    DetectionEngine<Real, Dim> engine_;
+    GatheredDetection<Real, Dim> moving_boxes_;  // all of them, where one class or the statics' caches want them
     StaticGrid<Real, Dim> grid_;
     StaticContacts<Real, Dim> contacts_;
-    InteractionClasses classes_;
+    ClassDetections<Real, Dim> classes_{2};
     bool classes_stale_ = true;  // a filter value the classes do not know came in
     std::size_t since_classes_ = 0;
-    ClassDetections<Real, Dim> class_detections_;
 };
 
 }  // namespace smb::detail
