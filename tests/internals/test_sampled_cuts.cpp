@@ -96,8 +96,7 @@ TEST(SampledCuts, CopyByColumnCopiesEverySlotOnceGroupedByColumn) {
         CellOrder<float, 3, double> order;
         order.list_arrivals(boxes.size());
         order.copy_by_column(
-            boxes, ids, origin, cuts.groups(2), [&](const Box<float, 3>& box) { return cuts.column_of(box); },
-            threads);
+            boxes, ids, origin, cuts.groups(2), [&](const Box<float, 3>& box) { return cuts.column_of(box); }, threads);
         const std::span<const Slot> slots = order.order();
         ASSERT_EQ(slots.size(), boxes.size());
         std::vector<bool> seen(boxes.size(), false);
