@@ -4,7 +4,9 @@
 // (cut_tree.hpp) so that every level is a linear bucketing pass instead of a sort.
 //
 // Per detection:
-//   1. The boxes are copied in last step's cell order (cell_order.hpp).
+//   1. The boxes are copied in last step's cell order (cell_order.hpp); where there is none
+//      (the first detection), grouped by column against planes cut from a sample of them
+//      (sampled_cuts.hpp).
 //   2. Level l (axis Dim-1-l): every box of every group is located against the group's planes
 //      (group_locator.hpp) and registered, by a stable counting sort (the singular regrouping:
 //      index array of counts, then a stack of offsets), in each segment its [min, max] touches
@@ -158,7 +160,7 @@ private:
     ColumnPresort<Real, Dim, Input> presort_;
     SampledCuts<Real, Dim, Input> sampled_cuts_;
     /// What the order follows: no cells at all (the first detection, a new origin; the order is
-    /// cold, each cell's boxes scattered over the ordered copy), or last step's cells.
+    /// cold, and the detection copies the boxes grouped by column instead), or last step's cells.
     enum class OrderState { fresh, follows_cells };
     OrderState order_state_ = OrderState::fresh;
 };
@@ -197,8 +199,8 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     // have no planes. Copied as it is, each cell's boxes would lie all over the copy, and every
     // level after the first and every cell check would read them out of order (at 1M boxes in
     // 3D, twice the time of a later detection). So the levels above the columns are cut from a
-    // sample of the input first, and the order is sorted by column before the copy, which then
-    // lays each column out in one run, as a later detection has it (sampled_cuts.hpp).
+    // sample of the input first (sampled_cuts.hpp), and the boxes are copied grouped by column
+    // by a counting sort, each column in one run, as a later detection has it.
     const bool cold = order_state_ == OrderState::fresh || cuts_.segments() != segments_before;
 
     Stopwatch phase{settings.profile};
