@@ -158,7 +158,6 @@ private:
     LevelRegrouping<Real, Dim> regrouping_;
     CellChecks<Real, Dim> checks_;
     ColumnPresort<Real, Dim, Input> presort_;
-    SampledCuts<Real, Dim, Input> sampled_cuts_;
     /// What the order follows: no cells at all (the first detection, a new origin; the order is
     /// cold, and the detection copies the boxes grouped by column instead), or last step's cells.
     enum class OrderState { fresh, follows_cells };
@@ -207,7 +206,8 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     const bool presorted = !cold && presort_.sorting();
     if (cold) {
         presort_.forget();
-        sampled_cuts_.cut(input, origin_, cuts_);
+        // A temporary: its buffers are needed only now, and a pipeline holds nothing for it.
+        SampledCuts<Real, Dim, Input>().cut(input, origin_, cuts_);
         profile.quantile_seconds += phase.lap();
         cell_order_.copy_by_column(
             input, ids, origin_, cuts_.groups(Dim - 1),

@@ -73,7 +73,6 @@ public:
             intervals_.swap(next_);
             cut_groups(1, cuts, scale);
         }
-        release();
     }
 
 private:
@@ -148,12 +147,6 @@ private:
             cuts.set_band(level, g, static_cast<std::size_t>(static_cast<double>(registrations) * scale),
                           static_cast<std::uint32_t>(static_cast<double>(fullest) * scale));
         }
-    }
-
-    void release() {
-        intervals_ = {};
-        next_ = {};
-        ranges_ = {};
     }
 
     std::vector<Interval> intervals_;    // the sampled boxes' intervals in each group, group by group
