@@ -104,6 +104,69 @@ public:
         }
     }
 
+    /// copy() where the order follows no cell (the first detection, new cuts): the order is
+    /// rewritten as the slots grouped by column_of(held box) (< `columns`), in slot order within
+    /// a column, and every box is copied to its column's run by a counting sort. The caller's
+    /// boxes are read twice in order and each held box written once, where sorting the order
+    /// first and then copying in it would read every box from a different place.
+    template <class ColumnOf>
+    void copy_by_column(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids,
+                        const std::array<Input, Dim>& origin, std::size_t columns, ColumnOf&& column_of, int threads) {
+        const std::size_t n = order_.size();
+        SMB_ASSERT(store_boxes.size() == n, "the order holds every box once");
+        resize_with_slack(ordered_, n);
+        own_ids_ = !store_ids.empty();
+        if (own_ids_)
+            resize_with_slack(ordered_ids_, n);
+        else
+            std::vector<BoxId>().swap(ordered_ids_);
+        // Each slot's column is held where the cell check writes the next order: no memory of
+        // its own, and the check finds those pages mapped.
+        resize_with_slack(next_order_, n);
+        std::uint32_t* column_at = next_order_.data();
+        const auto shares = static_cast<std::size_t>(threads);
+        std::vector<std::uint32_t> cursor(shares * columns, 0U);
+        auto share_begin = [&](std::size_t t) { return n * t / shares; };
+        auto held = [&origin](const Box<Input, Dim>& box) {
+            if constexpr (std::is_same_v<Real, Input>) {
+                (void)origin;
+                return box;
+            } else {
+                return held_box<Input, Dim>(box, origin);
+            }
+        };
+#pragma omp parallel for num_threads(threads) schedule(static, 1)
+        for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
+            std::uint32_t* count = cursor.data() + static_cast<std::size_t>(t) * columns;
+            for (std::size_t slot = share_begin(static_cast<std::size_t>(t));
+                 slot < share_begin(static_cast<std::size_t>(t) + 1); ++slot) {
+                const std::uint32_t column = column_of(held(store_boxes[slot]));
+                column_at[slot] = column;
+                ++count[column];
+            }
+        }
+        // Offsets column by column, share by share, so that each column keeps the slot order.
+        std::uint32_t offset = 0;
+        for (std::size_t c = 0; c < columns; ++c) {
+            for (std::size_t t = 0; t < shares; ++t) {
+                const std::uint32_t here = cursor[t * columns + c];
+                cursor[t * columns + c] = offset;
+                offset += here;
+            }
+        }
+#pragma omp parallel for num_threads(threads) schedule(static, 1)
+        for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
+            std::uint32_t* next = cursor.data() + static_cast<std::size_t>(t) * columns;
+            for (std::size_t slot = share_begin(static_cast<std::size_t>(t));
+                 slot < share_begin(static_cast<std::size_t>(t) + 1); ++slot) {
+                const std::uint32_t position = next[column_at[slot]]++;
+                order_[position] = static_cast<Slot>(slot);
+                ordered_[position] = held(store_boxes[slot]);
+                if (own_ids_) ordered_ids_[position] = store_ids[slot];
+            }
+        }
+    }
+
     /// The boxes in order, as copied by the last copy().
     [[nodiscard]] std::span<const Box<Real, Dim>> boxes() const noexcept { return ordered_; }
     /// Whether the ids were given (ids()); else box `slot` has id `slot` (order()).

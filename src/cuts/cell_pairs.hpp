@@ -10,8 +10,8 @@
 //   registered. No keys, no sort, and loops whose lengths do not depend on the boxes' sizes,
 //   which a sweep's scan does, at one mispredicted exit per box.
 // - Beyond, and in every column (the default cells: x left uncut, level_regrouping.hpp): the
-//   boxes get local numbers (the global-local map of the paper), are sorted on x (a counting
-//   pass into buckets of x, then DIS with one increment), and are swept on x with direct tests on
+//   boxes get local numbers (the global-local map of the paper), are sorted on x (cell_x_order.hpp),
+//   and are swept on x with direct tests on
 //   the other axes. A long column swept on x tests about as many candidates per box as boxes
 //   reach it along x, where a cube of the same population tests every box of the cube.
 // Either way the hits of float boxes are written down without a branch (a compress through a
@@ -40,6 +40,7 @@
 #include "cuts/cell_floor.hpp"
 #include "cuts/cell_rows.hpp"
 #include "cuts/cell_scratch.hpp"
+#include "cuts/cell_x_order.hpp"
 #include "cuts/monotone_key.hpp"
 #include "smb/box.hpp"
 
@@ -96,11 +97,10 @@ public:
                                std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report,
                                std::vector<std::uint32_t>& home) {
         const std::size_t m = entries.size();
-        const std::size_t moves = sort_on_x(entries, boxes);
+        const std::size_t moves = x_order_.sort(entries, boxes);
         laid_out_swept_ = true;
-        std::uint64_t* order = order_.data();
-        order_equal_keys(order, m, entries, boxes, ids);
-        lay_out_sorted(order, m, entries, boxes, floor);
+        x_order_.order_equal_keys(entries, boxes, ids);
+        lay_out_sorted(x_order_.keys(), m, entries, boxes, floor);
         if constexpr (kExactLanes) {
             if (m <= kMostPaired) {
                 rows_.swept_rows(m, kSweptHitRoom, [&](const std::uint32_t* hits, std::size_t count) {
@@ -141,7 +141,7 @@ public:
                 // A box that reaches the visitor's min x has min x >= that min x - widest_x();
                 // rounded down, and rounding to floats keeps the order, so none is skipped.
                 const float reach_from =
-                    to_float(std::nextafter(box.min[0] - widest_x_, -std::numeric_limits<Real>::infinity()));
+                    to_float(std::nextafter(box.min[0] - widest_x(), -std::numeric_limits<Real>::infinity()));
                 from = static_cast<std::size_t>(
                     std::partition_point(min_x, min_x + m, [&](float x) { return x < reach_from; }) - min_x);
             }
@@ -159,14 +159,12 @@ public:
     /// on the x extent of its boxes (at least every box's max x - min x); valid until the next
     /// check.
     [[nodiscard]] std::span<const std::uint32_t> swept_positions() const noexcept {
-        return {rows_.columns.position, order_.size()};
+        return {rows_.columns.position, x_order_.size()};
     }
-    [[nodiscard]] Real widest_x() const noexcept { return widest_x_; }
+    [[nodiscard]] Real widest_x() const noexcept { return x_order_.widest_x(); }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return (order_.capacity() + spread_.capacity()) * sizeof(std::uint64_t) + xs_.capacity() * sizeof(float) +
-               (bucket_.capacity() + bucket_count_.capacity()) * sizeof(std::uint32_t) + scratch_.bytes_held() +
-               own_home_.capacity() * sizeof(std::uint32_t);
+        return x_order_.bytes_held() + scratch_.bytes_held() + own_home_.capacity() * sizeof(std::uint32_t);
     }
 
 private:
@@ -292,117 +290,7 @@ private:
         home.insert(home.end(), own_home_.data(), out);
     }
 
-    // Boxes whose keys are equal arrive in an order that depends on the previous step; ordering
-    // them by exact coordinate and id makes the reported order a function of the boxes alone,
-    // so that detecting twice without changes reports the same list. Such runs are rare outside
-    // scenes of equal coordinates, where they are short.
-    template <class Id>
-    static void order_equal_keys(std::uint64_t* order, std::size_t m, std::span<const std::uint32_t> entries,
-                                 std::span<const Box<Real, Dim>> boxes, std::span<const Id> ids) {
-        std::size_t run = 0;
-        for (std::size_t i = 1; i <= m; ++i) {
-            if (i < m && (order[i] >> 32) == (order[run] >> 32)) continue;
-            if (i - run > 1) {
-                std::sort(order + run, order + i, [&](std::uint64_t x, std::uint64_t y) {
-                    const std::uint32_t a = entries[x & 0xFFFFFFFFU];
-                    const std::uint32_t b = entries[y & 0xFFFFFFFFU];
-                    if (boxes[a].min[0] != boxes[b].min[0]) return boxes[a].min[0] < boxes[b].min[0];
-                    return ids[a] < ids[b];
-                });
-            }
-            run = i;
-        }
-    }
-
-    // Writes to order_ the cell's keys (x key << 32 | local number) in increasing order and
-    // returns the insertion-sort moves. The list is not one sorted run: it follows last step's
-    // order, cell by cell, so a cell's boxes come as a few runs in x order, one from each cell
-    // they were at home in (a column takes boxes from its neighbours on every axis it is cut
-    // on), each run sorted, the runs interleaved in x. So the keys are first spread over about
-    // m buckets of equal width in x by a counting pass, which leaves each box among the few of
-    // its bucket, and DIS with the single increment 1 then sorts those. A cell whose keys
-    // crowd into a few buckets (equal or clustered coordinates) stops the insertions once they
-    // pass a bound and is sorted outright: the result is the same sorted list either way.
-    std::size_t sort_on_x(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes) {
-        const std::size_t m = entries.size();
-        order_.resize(m);
-        if (m == 0) return 0;
-        spread_.resize(m);
-        bucket_.resize(m);
-        xs_.resize(m);
-        std::uint64_t* keyed = spread_.data();
-        float* xs = xs_.data();
-        float lo = std::numeric_limits<float>::infinity();
-        float hi = -std::numeric_limits<float>::infinity();
-        Real widest = 0;
-        for (std::size_t i = 0; i < m; ++i) {
-            const Box<Real, Dim>& box = boxes[entries[i]];
-            const Real x = box.min[0];
-            const float rounded = to_float(x);
-            xs[i] = rounded;
-            lo = std::min(lo, rounded);
-            hi = std::max(hi, rounded);
-            widest = std::max(widest, box.max[0] - x);
-            keyed[i] = (std::uint64_t{monotone_key(x)} << 32) | i;
-        }
-        // Rounded up: no box's exact extent exceeds it.
-        widest_x_ = std::nextafter(widest, std::numeric_limits<Real>::infinity());
-        // Buckets by the rounded value, which never reverses an order: keys in increasing order
-        // fall in buckets that never decrease, so each bucket is one stretch of the sorted list.
-        const std::size_t buckets = m;
-        // Rounded float arithmetic is monotone too. A width beyond the float range puts every
-        // box in one bucket (the bound then sorts them outright).
-        const float width = hi - lo;
-        // So does a subnormal width, whose scale would overflow float (and 0 * infinity is NaN).
-        const double raw_scale = width > 0 && width < std::numeric_limits<float>::infinity()
-                                     ? static_cast<double>(buckets) / static_cast<double>(width)
-                                     : 0.0;
-        const float scale =
-            raw_scale < static_cast<double>(std::numeric_limits<float>::max()) ? static_cast<float>(raw_scale) : 0.0F;
-        const auto last_bucket = static_cast<float>(buckets - 1);
-        bucket_count_.assign(buckets + 1, 0U);
-        std::uint32_t* bucket = bucket_.data();
-        std::uint32_t* count = bucket_count_.data();
-        for (std::size_t i = 0; i < m; ++i) {
-            // With scale 0 the difference may itself overflow to infinity, and infinity * 0 is NaN.
-            const float position = scale > 0 ? (xs[i] - lo) * scale : 0.0F;
-            bucket[i] = static_cast<std::uint32_t>(std::min(position, last_bucket));
-            ++count[bucket[i] + 1];
-        }
-        for (std::size_t b = 0; b < buckets; ++b) count[b + 1] += count[b];
-        std::uint64_t* order = order_.data();
-        for (std::size_t i = 0; i < m; ++i) order[count[bucket[i]]++] = keyed[i];
-        return insertion_sort(order, m, 8 * m + 64);
-    }
-
-    // DIS with the single increment 1 on a list whose boxes lie close to their places. Past
-    // `bound` moves the rest is sorted outright. The keys carry the local numbers, so a move
-    // shifts 8 bytes, not a box.
-    static std::size_t insertion_sort(std::uint64_t* keys, std::size_t m, std::size_t bound) {
-        std::size_t moves = 0;
-        for (std::size_t i = 1; i < m; ++i) {
-            const std::uint64_t moving = keys[i];
-            std::size_t j = i;
-            while (j > 0 && moving < keys[j - 1]) {
-                keys[j] = keys[j - 1];
-                --j;
-            }
-            keys[j] = moving;
-            moves += i - j;
-            if (moves > bound) {
-                std::sort(keys, keys + m);
-                break;
-            }
-        }
-        return moves;
-    }
-
-    std::vector<std::uint64_t> order_;
-    Real widest_x_ = 0;                        // see widest_x()
-    std::vector<std::uint64_t> spread_;        // the keys in the order of the entries
-    std::vector<std::uint32_t> bucket_;        // the bucket of each entry
-    std::vector<float> xs_;                    // the min x of each entry, rounded to float
-    std::vector<std::uint32_t> bucket_count_;  // the counting pass's offsets
+    CellXOrder<Real, Dim> x_order_;  // the keys of a swept cell, in x order
     CellScratch<Dim> scratch_;
     CellRows<Dim> rows_;  // the columns laid out in scratch_, and the row tests that read them
     float sure_margin_ = std::numeric_limits<float>::infinity();

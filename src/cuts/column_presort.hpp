@@ -89,19 +89,12 @@ private:
     /// The column (group of the deepest level's parent) holding the box's lower corner.
     [[nodiscard]] static std::uint32_t column_of(const Box<Input, Dim>& box, const std::array<Input, Dim>& origin,
                                                  const CutTree<Real, Dim>& cuts) noexcept {
-        Box<Real, Dim> held;
         if constexpr (std::is_same_v<Real, Input>) {
             (void)origin;
-            held = box;
+            return cuts.column_of(box);
         } else {
-            held = held_box<Input, Dim>(box, origin);
+            return cuts.column_of(held_box<Input, Dim>(box, origin));
         }
-        std::size_t group = 0;
-        for (int level = 0; level + 1 < Dim; ++level) {
-            const int axis = CutTree<Real, Dim>::axis_of_level(level);
-            group = group * cuts.segments() + segment_of(cuts.cuts(level, group), held.min[axis]);
-        }
-        return static_cast<std::uint32_t>(group);
     }
 
     bool sorting_ = false;

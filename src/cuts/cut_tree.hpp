@@ -28,6 +28,7 @@
 
 #include "core/tuning.hpp"
 #include "cuts/quantile_select.hpp"
+#include "smb/box.hpp"
 
 namespace smb::detail {
 
@@ -234,6 +235,15 @@ public:
         Real* out = cuts_[level].data() + group * (k_ + 1);
         if (k_ > 1) std::fill(out, out + (k_ - 1), std::numeric_limits<Real>::infinity());
         limit_[level][group] = std::numeric_limits<std::uint32_t>::max();
+    }
+
+    /// The group of the deepest level (a column where x is left uncut) that holds `box`'s
+    /// lower corner.
+    [[nodiscard]] std::uint32_t column_of(const Box<Real, Dim>& box) const noexcept {
+        std::size_t group = 0;
+        for (int level = 0; level + 1 < Dim; ++level)
+            group = group * k_ + segment_of(cuts(level, group), box.min[axis_of_level(level)]);
+        return static_cast<std::uint32_t>(group);
     }
 
     /// Lower plane of segment `segment` of group `group` (-inf for the first).

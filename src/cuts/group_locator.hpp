@@ -99,8 +99,8 @@ public:
     /// The share of the entries of `level` whose min the hint missed, in the last judgement.
     [[nodiscard]] double miss_share(int level) const noexcept { return miss_share_[level]; }
 
-    /// Every level locates without the hint (a cold order: the previous entry says nothing of the
-    /// next one's segment), or every level tries it again.
+    /// Every level locates without the hint, or every level tries it again (a cold detection,
+    /// whose entries come column by column).
     void set_without_hint(bool without) noexcept { without_hint_.fill(without); }
 
 private:
@@ -139,7 +139,7 @@ std::uint32_t GroupLocator<Real, Dim>::locate(int level, std::size_t group, cons
         // rare push_back below may, for all the compiler knows, change it).
         const Entries listed = entries;
         for (std::size_t i = 0; i < listed.size(); ++i) {
-            // In a cold order (the first detection) the entries of levels 1 and deeper point
+            // Where boxes jumped since the last step, the entries of levels 1 and deeper point
             // anywhere in the box array; level 0 reads it in order.
             if constexpr (!std::is_same_v<Entries, PositionRange>) {
                 if (i + ahead < listed.size()) __builtin_prefetch(&boxes[listed[i + ahead]]);

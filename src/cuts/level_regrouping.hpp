@@ -79,7 +79,7 @@ public:
     void set_columns(bool columns) noexcept { columns_ = columns; }
     [[nodiscard]] bool columns() const noexcept { return columns_; }
 
-    /// Every level locates without the hint (a cold order), or every level tries it again.
+    /// Every level locates without the hint, or every level tries it again (a cold detection).
     void set_without_hint(bool without) noexcept { locator_.set_without_hint(without); }
     /// The share of the first level's entries whose segment the hint missed in the last run().
     [[nodiscard]] double first_level_misses() const noexcept { return locator_.miss_share(0); }

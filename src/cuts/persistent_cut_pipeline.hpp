@@ -4,7 +4,9 @@
 // (cut_tree.hpp) so that every level is a linear bucketing pass instead of a sort.
 //
 // Per detection:
-//   1. The boxes are copied in last step's cell order (cell_order.hpp).
+//   1. The boxes are copied in last step's cell order (cell_order.hpp); where there is none
+//      (the first detection), grouped by column against planes cut from a sample of them
+//      (sampled_cuts.hpp).
 //   2. Level l (axis Dim-1-l): every box of every group is located against the group's planes
 //      (group_locator.hpp) and registered, by a stable counting sort (the singular regrouping:
 //      index array of counts, then a stack of offsets), in each segment its [min, max] touches
@@ -42,6 +44,7 @@
 #include "cuts/column_presort.hpp"
 #include "cuts/cut_tree.hpp"
 #include "cuts/level_regrouping.hpp"
+#include "cuts/sampled_cuts.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 #include "smb/profile.hpp"
@@ -156,7 +159,7 @@ private:
     CellChecks<Real, Dim> checks_;
     ColumnPresort<Real, Dim, Input> presort_;
     /// What the order follows: no cells at all (the first detection, a new origin; the order is
-    /// cold, each cell's boxes scattered over the ordered copy), or last step's cells.
+    /// cold, and the detection copies the boxes grouped by column instead), or last step's cells.
     enum class OrderState { fresh, follows_cells };
     OrderState order_state_ = OrderState::fresh;
 };
@@ -191,27 +194,34 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     const std::uint32_t segments_before = cuts_.segments();
     plan_segments(n, settings);
     threads_ = thread_count(settings);
-    // A cold order (first detection, new cut counts) scatters each cell's boxes over the
-    // ordered array. The check then reads them out of order: renumbering them in cell order
-    // first (a second copy of every box) costs more than it saves, since a cell copies its
-    // boxes out into arrays of its own before it tests them.
+    // A cold order (first detection, new cut counts, new origin) follows no cell, and the cuts
+    // have no planes. Copied as it is, each cell's boxes would lie all over the copy, and every
+    // level after the first and every cell check would read them out of order (at 1M boxes in
+    // 3D, twice the time of a later detection). So the levels above the columns are cut from a
+    // sample of the input first (sampled_cuts.hpp), and the boxes are copied grouped by column
+    // by a counting sort, each column in one run, as a later detection has it.
     const bool cold = order_state_ == OrderState::fresh || cuts_.segments() != segments_before;
-    // In a cold order the previous entry says nothing of the next one's segment. Boxes that
-    // jumped far since the last step are left to the hint's judgement, which counts the misses.
-    if (cold) regrouping_.set_without_hint(true);
 
     Stopwatch phase{settings.profile};
     const bool presorted = !cold && presort_.sorting();
-    if (cold) presort_.forget();
-    if (presorted) presort_.sort(input, origin_, cuts_, cell_order_.rewritable_order());
-    cell_order_.copy(input, ids, origin_, threads_);
+    if (cold) {
+        presort_.forget();
+        // A temporary: its buffers are needed only now, and a pipeline holds nothing for it.
+        SampledCuts<Real, Dim, Input>().cut(input, origin_, cuts_);
+        profile.quantile_seconds += phase.lap();
+        cell_order_.copy_by_column(
+            input, ids, origin_, cuts_.groups(Dim - 1),
+            [this](const Box<Real, Dim>& box) { return cuts_.column_of(box); }, threads_);
+        // The entries now come column by column: the hint is worth trying on every level.
+        regrouping_.set_without_hint(false);
+    } else {
+        if (presorted) presort_.sort(input, origin_, cuts_, cell_order_.rewritable_order());
+        cell_order_.copy(input, ids, origin_, threads_);
+    }
     profile.copy_seconds += phase.seconds();
     const std::span<const Box<Real, Dim>> boxes = cell_order_.boxes();
     auto id_at = [this](Position position) { return cell_order_.id_at(position); };
     const double cutting = regrouping_.run(boxes, cuts_, threads_, id_at, settings.profile, profile);
-    // The misses of a cold order say nothing of the next detection, whose entries will come in
-    // this one's cells: it tries the hint, and judges again from its own misses.
-    if (cold) regrouping_.set_without_hint(false);
     if (!cold && !presorted) presort_.judge(regrouping_.first_level_misses());
     profile.quantile_seconds += cutting;
     profile.cut_regroup_seconds += phase.lap() - cutting;
