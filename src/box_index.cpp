@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <string>
-#include <utility>
 
 #include "core/invalid_box.hpp"
 #include "core/shortest_number.hpp"

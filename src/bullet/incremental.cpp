@@ -9,7 +9,6 @@
 // index, the others (the stale ones) one by one.
 
 #include <algorithm>
-#include <utility>
 
 #include "bullet/broadphase_impl.hpp"
 #include "bullet/proxy.hpp"

@@ -2,7 +2,6 @@
 #include "axial_regions.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <functional>
 #include <limits>
 
