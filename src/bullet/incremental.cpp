@@ -26,9 +26,7 @@ using Candidate = BroadphasePool::Candidate;
     return x.a != y.a ? x.a < y.a : x.b < y.b;
 }
 
-[[nodiscard]] bool same_pair(const Candidate& x, const Candidate& y) noexcept {
-    return x.a == y.a && x.b == y.b;
-}
+[[nodiscard]] bool same_pair(const Candidate& x, const Candidate& y) noexcept { return x.a == y.a && x.b == y.b; }
 
 }  // namespace
 
