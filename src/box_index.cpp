@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <string>
-#include <utility>
 
 #include "core/invalid_box.hpp"
 #include "core/shortest_number.hpp"
@@ -56,6 +55,15 @@ void rebuild_grid(std::unique_ptr<Grid>& grid, Build&& build) {
     }
 }
 
+/// Checks `boxes` (box i named id_of(i) in the error) and builds the grid of all of them.
+template <class Grid, std::floating_point Real, int Dim, class IdOf>
+void build_checked(std::unique_ptr<Grid>& grid, std::span<const Box<Real, Dim>> boxes, IdOf id_of) {
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        if (!is_valid(boxes[i])) throw InvalidBoxError(detail::describe_invalid_box(id_of(i), boxes[i]));
+    }
+    rebuild_grid(grid, [&](Grid& built) { built.build(boxes, id_of, [](std::size_t) { return true; }); });
+}
+
 }  // namespace
 
 template <std::floating_point Real, int Dim>
@@ -82,13 +90,7 @@ BoxIndex<Real, Dim>& BoxIndex<Real, Dim>::operator=(BoxIndex&&) noexcept = defau
 
 template <std::floating_point Real, int Dim>
 void BoxIndex<Real, Dim>::build(std::span<const box_type> boxes) {
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-        if (!is_valid(boxes[i])) throw InvalidBoxError(detail::describe_invalid_box(static_cast<BoxId>(i), boxes[i]));
-    }
-    rebuild_grid(grid_, [&](detail::GridIndex<Real, Dim>& grid) {
-        grid.build(
-            boxes, [](std::size_t i) { return static_cast<BoxId>(i); }, [](std::size_t) { return true; });
-    });
+    build_checked(grid_, boxes, [](std::size_t i) { return static_cast<BoxId>(i); });
 }
 
 template <std::floating_point Real, int Dim>
@@ -97,13 +99,7 @@ void BoxIndex<Real, Dim>::build(std::span<const BoxId> ids, std::span<const box_
         throw ArgumentError("BoxIndex: " + std::to_string(ids.size()) + " ids but " + std::to_string(boxes.size()) +
                             " boxes");
     }
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-        if (!is_valid(boxes[i])) throw InvalidBoxError(detail::describe_invalid_box(ids[i], boxes[i]));
-    }
-    rebuild_grid(grid_, [&](detail::GridIndex<Real, Dim>& grid) {
-        grid.build(
-            boxes, [&](std::size_t i) { return ids[i]; }, [](std::size_t) { return true; });
-    });
+    build_checked(grid_, boxes, [&](std::size_t i) { return ids[i]; });
 }
 
 template <std::floating_point Real, int Dim>

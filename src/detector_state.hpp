@@ -4,11 +4,9 @@
 // (engine/detection_engine.hpp), the filtered and periodic detections when they are used.
 
 #include <cstddef>
-#include <cstdint>
 #include <functional>
 #include <memory>
 #include <span>
-#include <type_traits>
 #include <vector>
 
 #include "core/pair_output.hpp"

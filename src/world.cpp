@@ -139,9 +139,7 @@ void World<Real, Dim>::remove(std::span<const BoxId> ids) {
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::update(BoxId id, const box_type& box) {
-    auto& state = this->state();
-    state.store().update(std::span(&id, 1), std::span(&box, 1));
-    state.filters().note_updated(state.store(), std::span(&id, 1));
+    update(std::span(&id, 1), std::span(&box, 1));
 }
 
 template <std::floating_point Real, int Dim>

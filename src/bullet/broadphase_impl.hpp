@@ -23,7 +23,72 @@
 
 namespace smb::bullet {
 
-class Broadphase::Impl {
+/// The state of the proxies, their candidates and the step's scratch that resetPool drops once
+/// no proxy is left: value-reset in one, so that a member added here cannot be missed.
+struct BroadphasePool {
+    /// What the cache holds of a candidate: nothing (its boxes are apart), the pair, or nothing
+    /// because the cache refused the pair when the boxes began to overlap (asked again when they
+    /// next begin to).
+    enum class Held : std::uint8_t { apart, held, refused };
+    /// A pair of proxies whose fat boxes overlap (a < b).
+    struct Candidate {
+        std::uint32_t a = 0;
+        std::uint32_t b = 0;
+        Held held = Held::apart;
+    };
+
+    /// The pairs of fat boxes of the last detection as keys (src/core/pair_key_sort.hpp), sorted
+    /// before the merge, and the room their radix sort works in.
+    std::vector<std::uint64_t> pair_keys_;
+    std::vector<std::uint64_t> key_spare_;
+    std::vector<std::uint32_t> key_counts_;
+    /// By id: each proxy's box (empty, pairing with nothing, once destroyed) and its fat box.
+    std::vector<Box<float, 3>> boxes_;
+    std::vector<Box<float, 3>> fat_boxes_;
+    /// By id: the step at which the fat box was set (steps count calculateOverlappingPairs).
+    std::vector<std::uint32_t> fat_since_;
+    /// By id: the filter smb holds for the proxy's box (the default while the cache has a filter
+    /// callback).
+    std::vector<Filter> filters_;
+    /// Sorted by (a, b): the pairs of fat boxes of smb's last detection.
+    std::vector<Candidate> candidates_;
+    std::vector<Candidate> merged_;
+    std::vector<Candidate> found_;
+    std::vector<std::uint8_t> found_seen_;
+    /// The candidates are in (a, b) order; those found between detections are appended.
+    bool candidates_sorted_ = true;
+    /// The fat boxes of the live proxies as they were when it was built; the stale ones (whose
+    /// fat box changed since) are listed in stale_.
+    BoxIndex<float, 3> index_;
+    bool index_current_ = false;
+    std::vector<BoxId> index_ids_;
+    std::vector<Box<float, 3>> index_boxes_;
+    std::vector<BoxId> hits_;
+    /// Ids whose fat box changed since the last calculateOverlappingPairs, and since index_ was
+    /// built; marks_ holds, by id, whether an id is listed in either, or in moved_ (fresh_mark,
+    /// stale_mark, moved_mark).
+    std::vector<std::uint32_t> fresh_;
+    std::vector<std::uint32_t> stale_;
+    std::vector<Box<float, 3>> stale_boxes_;
+    std::vector<std::uint8_t> marks_;
+    /// Ids whose box changed (or that were created or destroyed) since the last
+    /// calculateOverlappingPairs: only the candidates they are part of are tested.
+    std::vector<std::uint32_t> changed_ids_;
+    std::vector<std::uint32_t> free_ids_;
+    /// Ids destroyed since the last detection: not given out again before it, so that a pair of
+    /// ids names the same two proxies in the candidates and in the detection's pairs.
+    std::vector<std::uint32_t> retired_ids_;
+    std::vector<std::uint32_t> moved_;
+    std::vector<BoxId> move_ids_;
+    std::vector<Box<float, 3>> move_boxes_;
+    /// Static-class proxies held dynamic because they moved lately.
+    std::vector<std::uint32_t> restless_;
+    /// A proxy or a filter changed since the last detection: the next one detects again (fat
+    /// boxes alone are followed through fresh_).
+    bool changed_ = true;
+};
+
+class Broadphase::Impl : public BroadphasePool {
 public:
     Impl(const WorldSettings& settings, btOverlappingPairCache* pair_cache, float skin);
 
@@ -45,16 +110,6 @@ public:
     [[nodiscard]] const World<float, 3>& world() const noexcept { return world_; }
 
     struct Proxy;
-    /// What the cache holds of a candidate: nothing (its boxes are apart), the pair, or nothing
-    /// because the cache refused the pair when the boxes began to overlap (asked again when they
-    /// next begin to).
-    enum class Held : std::uint8_t { apart, held, refused };
-    /// A pair of proxies whose fat boxes overlap (a < b).
-    struct Candidate {
-        std::uint32_t a = 0;
-        std::uint32_t b = 0;
-        Held held = Held::apart;
-    };
 
     /// The live proxy behind `proxy`; UnknownIdError for any other pointer.
     Proxy& own(const btBroadphaseProxy* proxy) const;
@@ -94,69 +149,20 @@ public:
     void set_callback_mode(bool callback_mode);
 
     World<float, 3> world_;
-    /// The pairs of fat boxes of the last detection as keys (src/core/pair_key_sort.hpp), sorted
-    /// before the merge, and the room their radix sort works in.
-    std::vector<std::uint64_t> pair_keys_;
-    std::vector<std::uint64_t> key_spare_;
-    std::vector<std::uint32_t> key_counts_;
     /// The width of a proxy id in pair_keys_: pair (a, b) is (a << key_width_) | b.
     int key_width_ = 0;
     float skin_ = Broadphase::default_skin;
-    /// By id: each proxy's box (empty, pairing with nothing, once destroyed) and its fat box.
-    std::vector<Box<float, 3>> boxes_;
-    std::vector<Box<float, 3>> fat_boxes_;
-    /// By id: the step at which the fat box was set (steps count calculateOverlappingPairs).
-    std::vector<std::uint32_t> fat_since_;
-    /// By id: the filter smb holds for the proxy's box (the default while the cache has a filter
-    /// callback).
-    std::vector<Filter> filters_;
     std::uint32_t step_ = 0;
-    /// Sorted by (a, b): the pairs of fat boxes of smb's last detection.
-    std::vector<Candidate> candidates_;
-    std::vector<Candidate> merged_;
-    std::vector<Candidate> found_;
-    std::vector<std::uint8_t> found_seen_;
-    /// The candidates are in (a, b) order; those found between detections are appended.
-    bool candidates_sorted_ = true;
-    /// The fat boxes of the live proxies as they were when it was built; the stale ones (whose
-    /// fat box changed since) are listed in stale_.
-    BoxIndex<float, 3> index_;
-    bool index_current_ = false;
-    std::vector<BoxId> index_ids_;
-    std::vector<Box<float, 3>> index_boxes_;
-    std::vector<BoxId> hits_;
-    /// Ids whose fat box changed since the last calculateOverlappingPairs, and since index_ was
-    /// built; marks_ holds, by id, whether an id is listed in either, or in moved_ (fresh_mark,
-    /// stale_mark, moved_mark).
-    std::vector<std::uint32_t> fresh_;
-    std::vector<std::uint32_t> stale_;
-    std::vector<Box<float, 3>> stale_boxes_;
-    std::vector<std::uint8_t> marks_;
-    /// Ids whose box changed (or that were created or destroyed) since the last
-    /// calculateOverlappingPairs: only the candidates they are part of are tested.
-    std::vector<std::uint32_t> changed_ids_;
     std::unique_ptr<btOverlappingPairCache> owned_cache_;
     btOverlappingPairCache* cache_ = nullptr;
 
     /// Slot i holds the proxy whose m_uniqueId is i, or null.
     std::vector<std::unique_ptr<Proxy>> slots_;
-    std::vector<std::uint32_t> free_ids_;
-    /// Ids destroyed since the last detection: not given out again before it, so that a pair of
-    /// ids names the same two proxies in the candidates and in the detection's pairs.
-    std::vector<std::uint32_t> retired_ids_;
-    std::vector<std::uint32_t> moved_;
-    std::vector<BoxId> move_ids_;
-    std::vector<Box<float, 3>> move_boxes_;
-    /// Static-class proxies held dynamic because they moved lately.
-    std::vector<std::uint32_t> restless_;
     std::size_t live_ = 0;
     /// Pairs this broad phase added to the cache and has not removed (the partners' lists hold
     /// each twice). When the cache holds a different number, someone else added or removed
     /// pairs there, and a destroyed proxy's pairs are found by scanning the cache instead.
     std::size_t pairs_held_ = 0;
-    /// A proxy or a filter changed since the last detection: the next one detects again (fat
-    /// boxes alone are followed through fresh_).
-    bool changed_ = true;
     bool callback_mode_ = false;
     /// Every candidate is tested in this calculateOverlappingPairs, changed or not: at every one
     /// while the cache has a filter callback (it may change its mind), and at the first one

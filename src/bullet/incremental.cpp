@@ -9,7 +9,6 @@
 // index, the others (the stale ones) one by one.
 
 #include <algorithm>
-#include <utility>
 
 #include "bullet/broadphase_impl.hpp"
 #include "bullet/proxy.hpp"
@@ -20,16 +19,14 @@ namespace smb::bullet {
 
 namespace {
 
-// Templates: the candidates are a private type of the broad phase.
-template <class Candidate>
+using Candidate = BroadphasePool::Candidate;
+
+/// (a, b) order of candidates, the order of the detection's pairs once sorted.
 [[nodiscard]] bool comes_before(const Candidate& x, const Candidate& y) noexcept {
-    return detail::comes_before(x.a, x.b, y.a, y.b);
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
 }
 
-template <class Candidate>
-[[nodiscard]] bool same_pair(const Candidate& x, const Candidate& y) noexcept {
-    return x.a == y.a && x.b == y.b;
-}
+[[nodiscard]] bool same_pair(const Candidate& x, const Candidate& y) noexcept { return x.a == y.a && x.b == y.b; }
 
 }  // namespace
 
@@ -79,8 +76,8 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
         }
     }
     // Two fresh boxes find each other twice.
-    std::sort(found_.begin(), found_.end(), comes_before<Candidate>);
-    found_.erase(std::unique(found_.begin(), found_.end(), same_pair<Candidate>), found_.end());
+    std::sort(found_.begin(), found_.end(), comes_before);
+    found_.erase(std::unique(found_.begin(), found_.end(), same_pair), found_.end());
 
     // The candidates with a fresh end are those found; the others keep their standing. In place,
     // each candidate tested as it is met: one pass, and those found anew go to the end (the list
@@ -90,7 +87,7 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
     for (std::size_t i = 0; i < candidates_.size(); ++i) {
         const Candidate candidate = candidates_[i];
         if (((marks_[candidate.a] | marks_[candidate.b]) & detail::fresh_mark) != 0) {
-            const auto at = std::lower_bound(found_.begin(), found_.end(), candidate, comes_before<Candidate>);
+            const auto at = std::lower_bound(found_.begin(), found_.end(), candidate, comes_before);
             if (at == found_.end() || !same_pair(*at, candidate)) {
                 if (candidate.held != Held::held) continue;
                 // A callback of the cache may have destroyed a proxy on the way, its pairs with it.
@@ -118,7 +115,7 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
 
 void Broadphase::Impl::reconcile_candidates(btDispatcher* dispatcher) {
     smb::detail::sort_pair_keys(pair_keys_, 2 * key_width_, key_spare_, key_counts_);
-    if (!candidates_sorted_) std::sort(candidates_.begin(), candidates_.end(), comes_before<Candidate>);
+    if (!candidates_sorted_) std::sort(candidates_.begin(), candidates_.end(), comes_before);
     candidates_sorted_ = true;
     merged_.clear();
     merged_.reserve(pair_keys_.size());

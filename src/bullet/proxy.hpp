@@ -40,9 +40,7 @@ inline constexpr std::uint8_t stale_mark = 2;
 inline constexpr std::uint8_t moved_mark = 4;
 inline constexpr std::uint8_t changed_mark = 8;
 inline constexpr std::uint8_t alive_mark = 16;
-}  // namespace detail
 
-namespace detail {
 /// smb::overlaps without an early exit: the passes over the candidates meet pairs apart along
 /// any axis, in no order a branch predictor learns. The boxes hold no NaN (checked_box), so
 /// `<=` says what `!(>)` says.
@@ -94,12 +92,6 @@ inline void Broadphase::Impl::test_new_candidate(Candidate& candidate, btDispatc
 }
 
 namespace detail {
-
-/// (a, b) order of candidates, the order of the detection's pairs once sorted.
-[[nodiscard]] inline bool comes_before(std::uint32_t a0, std::uint32_t b0, std::uint32_t a1,
-                                       std::uint32_t b1) noexcept {
-    return a0 != a1 ? a0 < a1 : b0 < b1;
-}
 
 /// Static and kinematic objects as btCollisionWorld files them (group StaticFilter, mask every bit
 /// but StaticFilter), and any proxy whose group holds only StaticFilter and KinematicFilter bits

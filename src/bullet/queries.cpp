@@ -112,37 +112,9 @@ void Broadphase::Impl::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax)
 void Broadphase::Impl::resetPool() {
     if (live_ != 0) return;
     world_.clear();
-    pair_keys_ = {};
-    key_spare_ = {};
-    key_counts_ = {};
-    boxes_ = {};
-    fat_boxes_ = {};
-    fat_since_ = {};
-    filters_ = {};
-    candidates_ = {};
-    merged_ = {};
-    found_ = {};
-    found_seen_ = {};
-    candidates_sorted_ = true;
-    index_ = {};
-    index_current_ = false;
-    index_ids_ = {};
-    index_boxes_ = {};
-    hits_ = {};
-    fresh_ = {};
-    stale_ = {};
-    stale_boxes_ = {};
-    marks_ = {};
-    changed_ids_ = {};
+    static_cast<BroadphasePool&>(*this) = BroadphasePool{};
     slots_.clear();
     slots_.shrink_to_fit();
-    free_ids_ = {};
-    retired_ids_ = {};
-    moved_ = {};
-    move_ids_ = {};
-    move_boxes_ = {};
-    restless_ = {};
-    changed_ = true;
 }
 
 void Broadphase::Impl::printStats() {

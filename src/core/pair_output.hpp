@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <span>
-#include <string>
-#include <utility>
 #include <vector>
 
 #include "smb/errors.hpp"

@@ -4,7 +4,6 @@
 // Without OpenMP every pass runs on the calling thread, as thread 0 of a team of one.
 
 #include <algorithm>
-#include <concepts>
 #include <cstddef>
 #include <vector>
 

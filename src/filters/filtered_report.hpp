@@ -12,7 +12,6 @@
 // ids. Otherwise the key is the index, and the filter and the id are read from one array in
 // index order (FilteredReport): two cache misses a pair, which the packed keys save.
 
-#include <cstddef>
 #include <cstdint>
 #include <span>
 

@@ -8,7 +8,6 @@
 // Detector's, unchanged, and so are its skin's candidates; a filtered pair costs one test here.
 
 #include <cstddef>
-#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>

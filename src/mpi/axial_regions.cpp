@@ -2,7 +2,6 @@
 #include "axial_regions.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <functional>
 #include <limits>
 
@@ -26,7 +25,7 @@ std::array<int, Dim> regions_per_axis_for(int ranks) {
 }
 
 template <std::floating_point Real, int Dim>
-AxialRegions<Real, Dim>::AxialRegions(int ranks) : per_axis_(regions_per_axis_for<Dim>(ranks)), region_count_(ranks) {
+AxialRegions<Real, Dim>::AxialRegions(int ranks) : per_axis_(regions_per_axis_for<Dim>(ranks)) {
     int groups = 1;
     for (int k = 0; k < Dim; ++k) {
         groups_[k] = groups;

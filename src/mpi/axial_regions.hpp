@@ -41,7 +41,6 @@ public:
     explicit AxialRegions(int ranks);
 
     [[nodiscard]] bool has_cuts() const noexcept { return has_cuts_; }
-    [[nodiscard]] int region_count() const noexcept { return region_count_; }
     [[nodiscard]] const std::array<int, Dim>& per_axis() const noexcept { return per_axis_; }
 
     /// Finds the cuts collectively over every rank's boxes: on each axis in turn, a bisection of
@@ -68,7 +67,6 @@ private:
     std::array<int, Dim> per_axis_{};
     std::array<int, Dim> groups_{};  // groups (slabs of the axes before) on axis k
     std::array<std::vector<Real>, Dim> cuts_{};
-    int region_count_ = 1;
     bool has_cuts_ = false;
 };
 

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <numeric>
-#include <string>
 #include <utility>
 
 #include "axial_regions.hpp"
@@ -26,6 +25,21 @@ struct BoxRecord {
     BoxId id;
     Box<Real, Dim> box;
 };
+
+/// Sorts `targets`, (rank, what) each, by rank into `send` as record_of(what) (a counting sort:
+/// a rank's records lie together, in the order of the targets), and counts[r] how many go to
+/// rank r (region r is rank r's), ready for all_to_all.
+template <class Target, class Record, class RecordOf>
+void sort_by_rank(const std::vector<Target>& targets, int ranks, std::vector<Record>& send, std::vector<int>& counts,
+                  RecordOf record_of) {
+    counts.assign(static_cast<std::size_t>(ranks), 0);
+    for (const Target& target : targets) ++counts[static_cast<std::size_t>(target.first)];
+    std::vector<int> fill(counts.size(), 0);
+    std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
+    send.resize(targets.size());
+    for (const Target& target : targets)
+        send[static_cast<std::size_t>(fill[static_cast<std::size_t>(target.first)]++)] = record_of(target.second);
+}
 
 template <std::floating_point Real, int Dim>
 class DistributedState {
@@ -100,12 +114,7 @@ private:
     std::vector<int> here_;
     std::vector<BoxId> removals_received_;
     std::vector<BoxRecord<Real, Dim>> upserts_received_;
-    /// A pair kept by this region, on its way to a holder.
-    struct AddressedPair {
-        int destination;
-        Pair pair;
-    };
-    std::vector<AddressedPair> kept_pairs_;
+    std::vector<std::pair<int, Pair>> kept_pairs_;  // (holder, pair): kept here, on its way
     std::vector<Pair> pair_send_;
     std::vector<Pair> pairs_received_;  // swapped with the caller's vector
     RegionStore<box_type> store_;       // the region's boxes, with the rank that passed in each
@@ -195,17 +204,8 @@ void DistributedState<Real, Dim>::send_box_changes(std::span<const box_type> box
     std::swap(sent_, next_sent_);
 
     std::vector<int> removal_counts, upsert_counts, removals_received, upserts_received;
-    const auto fill_by_region = [this](const auto& targets, auto& send, std::vector<int>& counts, auto record_of) {
-        counts.assign(static_cast<std::size_t>(ranks_), 0);
-        for (const auto& target : targets) ++counts[static_cast<std::size_t>(target.first)];
-        std::vector<int> fill(counts.size(), 0);
-        std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
-        send.resize(targets.size());
-        for (const auto& target : targets)
-            send[static_cast<std::size_t>(fill[static_cast<std::size_t>(target.first)]++)] = record_of(target.second);
-    };
-    fill_by_region(removal_targets_, removal_send_, removal_counts, [](BoxId id) { return id; });
-    fill_by_region(upsert_targets_, upsert_send_, upsert_counts, [&](std::size_t k) {
+    sort_by_rank(removal_targets_, ranks_, removal_send_, removal_counts, [](BoxId id) { return id; });
+    sort_by_rank(upsert_targets_, ranks_, upsert_send_, upsert_counts, [&](std::size_t k) {
         return Record{sorted_ids_[k], boxes[order_[k]]};
     });
     all_to_all(comm_, removal_send_, removal_counts, removals_received, removals_received_);
@@ -236,7 +236,7 @@ void DistributedState<Real, Dim>::receive_box_changes(const std::vector<BoxId>& 
 
 template <std::floating_point Real, int Dim>
 void DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
-    std::vector<AddressedPair>& kept = kept_pairs_;
+    std::vector<std::pair<int, Pair>>& kept = kept_pairs_;
     kept.clear();
     const bool both = settings_.hand_off == PairHandOff::both_holders;
     const auto start = std::chrono::steady_clock::now();
@@ -256,25 +256,18 @@ void DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
         }
     });
     stats_.local_detect_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    stats_.pairs_found = 0;
-    std::vector<int> counts(static_cast<std::size_t>(ranks_), 0);
-    for (const AddressedPair& item : kept) ++counts[static_cast<std::size_t>(item.destination)];
-    std::vector<int> fill(counts.size(), 0);
-    std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
-    std::vector<Pair>& send = pair_send_;
-    send.resize(kept.size());
-    for (const AddressedPair& item : kept)
-        send[static_cast<std::size_t>(fill[static_cast<std::size_t>(item.destination)]++)] = item.pair;
+    std::vector<int> counts;
+    sort_by_rank(kept, ranks_, pair_send_, counts, [](const Pair& pair) { return pair; });
     stats_.pairs_found = both ? 0 : kept.size();
     if (both) {
         for (std::size_t i = 0; i < kept.size(); ++i) {
             // The second copy of a pair follows its first, addressed to the other holder.
-            if (i + 1 < kept.size() && kept[i + 1].pair == kept[i].pair) ++i;
+            if (i + 1 < kept.size() && kept[i + 1].second == kept[i].second) ++i;
             ++stats_.pairs_found;
         }
     }
     std::vector<int> receive_counts;
-    all_to_all(comm_, send, counts, receive_counts, pairs_received_);
+    all_to_all(comm_, pair_send_, counts, receive_counts, pairs_received_);
     stats_.pair_bytes_sent = bytes_to_others<Pair>(counts, rank_);
 }
 
