@@ -17,6 +17,7 @@
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "smb/box.hpp"
 
@@ -40,6 +41,19 @@ template <std::floating_point Input, int Dim>
         held.max[k] = clamped_float(box.max[k] - origin[k]);
     }
     return held;
+}
+
+/// `box` as a pipeline of Real holds it: the box itself where Real is the input's type (the
+/// origin is then zero), its held copy otherwise.
+template <std::floating_point Real, std::floating_point Input, int Dim>
+[[nodiscard]] inline Box<Real, Dim> held_as(const Box<Input, Dim>& box,
+                                            const std::type_identity_t<std::array<Input, Dim>>& origin) noexcept {
+    if constexpr (std::is_same_v<Real, Input>) {
+        (void)origin;
+        return box;
+    } else {
+        return held_box<Input, Dim>(box, origin);
+    }
 }
 
 /// `value` rounded down (or up) to a float, clamped to the finite floats.

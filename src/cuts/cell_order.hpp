@@ -77,12 +77,7 @@ public:
     void copy(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids,
               const std::array<Input, Dim>& origin, int threads) {
         const std::size_t n = order_.size();
-        resize_with_slack(ordered_, n);
-        own_ids_ = !store_ids.empty();
-        if (own_ids_)
-            resize_with_slack(ordered_ids_, n);
-        else
-            std::vector<BoxId>().swap(ordered_ids_);
+        size_copy(n, store_ids);
         // Each box is a miss of its own (the store is in slot order, not cell order) and the loop
         // does little else, so the requests must start far ahead to keep enough in flight.
         constexpr std::size_t ahead = 64;
@@ -94,12 +89,7 @@ public:
                 prefetch_whole(&store_boxes[order_[i + ahead]]);
                 if (!store_ids.empty()) __builtin_prefetch(&store_ids[order_[i + ahead]]);
             }
-            if constexpr (!std::is_same_v<Real, Input>) {
-                ordered_[i] = held_box<Input, Dim>(store_boxes[order_[i]], origin);
-            } else {
-                (void)origin;
-                ordered_[i] = store_boxes[order_[i]];
-            }
+            ordered_[i] = held_as<Real>(store_boxes[order_[i]], origin);
             if (own_ids_) ordered_ids_[i] = store_ids[order_[i]];
         }
     }
@@ -114,12 +104,7 @@ public:
                         const std::array<Input, Dim>& origin, std::size_t columns, ColumnOf&& column_of, int threads) {
         const std::size_t n = order_.size();
         SMB_ASSERT(store_boxes.size() == n, "the order holds every box once");
-        resize_with_slack(ordered_, n);
-        own_ids_ = !store_ids.empty();
-        if (own_ids_)
-            resize_with_slack(ordered_ids_, n);
-        else
-            std::vector<BoxId>().swap(ordered_ids_);
+        size_copy(n, store_ids);
         // Each slot's column is held where the cell check writes the next order: no memory of
         // its own, and the check finds those pages mapped.
         resize_with_slack(next_order_, n);
@@ -127,20 +112,12 @@ public:
         const auto shares = static_cast<std::size_t>(threads);
         std::vector<std::uint32_t> cursor(shares * columns, 0U);
         auto share_begin = [&](std::size_t t) { return n * t / shares; };
-        auto held = [&origin](const Box<Input, Dim>& box) {
-            if constexpr (std::is_same_v<Real, Input>) {
-                (void)origin;
-                return box;
-            } else {
-                return held_box<Input, Dim>(box, origin);
-            }
-        };
 #pragma omp parallel for num_threads(threads) schedule(static, 1)
         for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
             std::uint32_t* count = cursor.data() + static_cast<std::size_t>(t) * columns;
             for (std::size_t slot = share_begin(static_cast<std::size_t>(t));
                  slot < share_begin(static_cast<std::size_t>(t) + 1); ++slot) {
-                const std::uint32_t column = column_of(held(store_boxes[slot]));
+                const std::uint32_t column = column_of(held_as<Real>(store_boxes[slot], origin));
                 column_at[slot] = column;
                 ++count[column];
             }
@@ -161,7 +138,7 @@ public:
                  slot < share_begin(static_cast<std::size_t>(t) + 1); ++slot) {
                 const std::uint32_t position = next[column_at[slot]]++;
                 order_[position] = static_cast<Slot>(slot);
-                ordered_[position] = held(store_boxes[slot]);
+                ordered_[position] = held_as<Real>(store_boxes[slot], origin);
                 if (own_ids_) ordered_ids_[position] = store_ids[slot];
             }
         }
@@ -196,6 +173,16 @@ public:
     }
 
 private:
+    /// Room for n copied boxes, and for their ids where the caller gives them.
+    void size_copy(std::size_t n, std::span<const BoxId> store_ids) {
+        resize_with_slack(ordered_, n);
+        own_ids_ = !store_ids.empty();
+        if (own_ids_)
+            resize_with_slack(ordered_ids_, n);
+        else
+            std::vector<BoxId>().swap(ordered_ids_);
+    }
+
     std::vector<Slot> order_;              // every slot once: last step's cells, x-sorted within swept ones
     std::vector<Position> next_order_;     // positions of the home boxes, cell by cell
     std::vector<Box<Real, Dim>> ordered_;  // the boxes in order_'s order, copied each step

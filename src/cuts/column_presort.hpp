@@ -89,12 +89,7 @@ private:
     /// The column (group of the deepest level's parent) holding the box's lower corner.
     [[nodiscard]] static std::uint32_t column_of(const Box<Input, Dim>& box, const std::array<Input, Dim>& origin,
                                                  const CutTree<Real, Dim>& cuts) noexcept {
-        if constexpr (std::is_same_v<Real, Input>) {
-            (void)origin;
-            return cuts.column_of(box);
-        } else {
-            return cuts.column_of(held_box<Input, Dim>(box, origin));
-        }
+        return cuts.column_of(held_as<Real>(box, origin));
     }
 
     bool sorting_ = false;

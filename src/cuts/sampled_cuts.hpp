@@ -103,12 +103,7 @@ private:
                 remainder -= size;
                 ++at;
             }
-            if constexpr (std::is_same_v<Real, Input>) {
-                (void)origin;
-                visit(i, input[at]);
-            } else {
-                visit(i, held_box<Input, Dim>(input[at], origin));
-            }
+            visit(i, held_as<Real>(input[at], origin));
         }
     }
 

@@ -13,9 +13,9 @@
 #include <span>
 #include <vector>
 
-#include "core/pair_output.hpp"
 #include "cuts/column_presort.hpp"
 #include "cuts/persistent_cut_pipeline.hpp"
+#include "internals/pipeline_pairs.hpp"
 #include "reference/brute_force.hpp"
 #include "smb/profile.hpp"
 #include "smb/settings.hpp"
@@ -107,21 +107,6 @@ TEST(ColumnPresort, StartsWhenHintsMissAndStopsWhenBoxesKeepTheirColumns) {
     EXPECT_EQ(presort.bytes_held(), 0U);
 }
 
-/// Runs `pipeline` on `boxes` and returns its pairs, sorted.
-template <int Dim>
-std::vector<Pair> detected(PersistentCutPipeline<float, Dim>& pipeline, std::span<const Box<float, Dim>> boxes) {
-    std::vector<Pair> pairs;
-    std::vector<Pair> chunk;
-    std::size_t count = 0;
-    const PairSink sink([&](std::span<const Pair> run) { pairs.insert(pairs.end(), run.begin(), run.end()); });
-    PairOutput output(chunk, 4096, sink, count);
-    DetectProfile profile;
-    pipeline.detect(boxes, {}, DetectionSettings{}, output, profile);
-    output.flush();
-    std::sort(pairs.begin(), pairs.end());
-    return pairs;
-}
-
 template <int Dim>
 void check_jumping_boxes(std::uint64_t seed) {
     std::mt19937_64 random(seed);
@@ -137,7 +122,8 @@ void check_jumping_boxes(std::uint64_t seed) {
         if (step == 20) {
             // The boxes settle: the sort must step aside again.
             const std::vector<Pair> expected = test::brute_force_pairs<float, Dim>(boxes);
-            for (int k = 0; k < 3; ++k) ASSERT_EQ(detected<Dim>(pipeline, boxes), expected);
+            for (int k = 0; k < 3; ++k)
+                ASSERT_EQ(detected(pipeline, std::span<const Box<float, Dim>>(boxes)), expected);
             EXPECT_FALSE(pipeline.presorting());
         }
         for (Box<float, Dim>& box : boxes) {
@@ -151,7 +137,7 @@ void check_jumping_boxes(std::uint64_t seed) {
         Box<float, Dim>& point = boxes[static_cast<std::size_t>(unit(random) * (n - 1))];
         point.max = point.min;
         const std::vector<Pair> expected = test::brute_force_pairs<float, Dim>(boxes);
-        ASSERT_EQ(detected<Dim>(pipeline, boxes), expected);
+        ASSERT_EQ(detected(pipeline, std::span<const Box<float, Dim>>(boxes)), expected);
         presorted = presorted || pipeline.presorting();
     }
     EXPECT_TRUE(presorted) << "the boxes jumped across columns at every step";

@@ -16,11 +16,11 @@
 #include <span>
 #include <vector>
 
-#include "core/pair_output.hpp"
 #include "cuts/cell_order.hpp"
 #include "cuts/cut_tree.hpp"
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "cuts/sampled_cuts.hpp"
+#include "internals/pipeline_pairs.hpp"
 #include "reference/brute_force.hpp"
 #include "smb/profile.hpp"
 #include "smb/settings.hpp"
@@ -42,22 +42,6 @@ std::vector<Box<Real, Dim>> lattice_boxes(std::size_t n, int side, int wide, std
         }
     }
     return boxes;
-}
-
-/// The pairs of one detection of `pipeline`, sorted.
-template <class Real, int Dim, class Input>
-std::vector<Pair> detected(PersistentCutPipeline<Real, Dim, Input>& pipeline, std::span<const Box<Input, Dim>> boxes,
-                           const DetectionSettings& settings) {
-    std::vector<Pair> pairs;
-    std::vector<Pair> chunk;
-    std::size_t count = 0;
-    const PairSink sink([&](std::span<const Pair> run) { pairs.insert(pairs.end(), run.begin(), run.end()); });
-    PairOutput output(chunk, 4096, sink, count);
-    DetectProfile profile;
-    pipeline.detect(boxes, {}, settings, output, profile);
-    output.flush();
-    std::sort(pairs.begin(), pairs.end());
-    return pairs;
 }
 
 TEST(SampledCuts, CutsEveryGroupAboveTheColumnsInOrderAndSetsItsBand) {
