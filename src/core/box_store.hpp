@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/bulk_vector.hpp"
 #include "core/growth.hpp"
 #include "core/id_index.hpp"
 #include "core/invalid_box.hpp"
@@ -234,9 +235,9 @@ private:
         ++removed_;
     }
 
-    std::vector<Box<Real, Dim>> boxes_;
-    std::vector<BoxId> ids_;
-    std::vector<std::uint8_t> alive_;
+    BulkVector<Box<Real, Dim>> boxes_;
+    BulkVector<BoxId> ids_;
+    BulkVector<std::uint8_t> alive_;
     IdIndex slot_of_id_;
     std::size_t removed_ = 0;
     std::vector<BoxId> removed_log_;

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/bulk_vector.hpp"
 #include "smb/pair.hpp"
 
 namespace smb::detail {
@@ -72,7 +73,7 @@ public:
     }
 
     void clear() {
-        std::vector<Slot>().swap(dense_);
+        BulkVector<Slot>().swap(dense_);
         std::unordered_map<BoxId, Slot>().swap(sparse_);
         count_ = 0;
     }
@@ -118,7 +119,7 @@ private:
         }
     }
 
-    std::vector<Slot> dense_;                 // dense_[id]: the slot of a small id, or kNoSlot
+    BulkVector<Slot> dense_;                  // dense_[id]: the slot of a small id, or kNoSlot
     std::unordered_map<BoxId, Slot> sparse_;  // the other ids
     std::size_t count_ = 0;
 };

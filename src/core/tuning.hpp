@@ -12,6 +12,13 @@
 
 namespace smb::detail::tuning {
 
+// --- Memory (src/core/bulk_vector.hpp) ------------------------------------------------------
+
+/// Blocks from this size on have their pages mapped in one call (256 pages, about 3 ms of faults
+/// on a virtual machine). Smaller ones (a cell's scratch, a thread's buffer) come and go from
+/// memory the process already holds, whose pages are mostly mapped.
+inline constexpr std::size_t mapped_at_once_from = std::size_t{1} << 20;
+
 // --- The axial cuts (src/cuts/) --------------------------------------------------------------
 
 /// Boxes the cuts aim to put in one cell (the public default of

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/assert.hpp"
+#include "core/bulk_vector.hpp"
 #include "core/growth.hpp"
 #include "core/ordered_rounds.hpp"
 #include "core/pair_output.hpp"
@@ -53,7 +54,7 @@ public:
     /// then the oversized boxes. Returns the insertion-sort moves of the swept cells.
     template <class Checked, class Report>
     std::size_t check(const Checked& checked, float sure_margin, int threads, Report& report,
-                      std::vector<Position>& home) {
+                      BulkVector<Position>& home) {
         threads_ = threads;
         cell_pairs_.resize(threads);
         gather_visitors(checked);
@@ -78,19 +79,19 @@ private:
     struct alignas(64) BlockOutput {
         std::vector<Pair> pairs;  // its first `filled` hold this block's pairs
         std::size_t filled = 0;
-        std::vector<Position> home;
+        BulkVector<Position> home;
         std::size_t moves = 0;
         bool overflowed = false;
     };
 
     template <class Checked, class Report>
-    std::size_t check_cells(const Checked& checked, float sure_margin, Report& report, std::vector<Position>& home);
+    std::size_t check_cells(const Checked& checked, float sure_margin, Report& report, BulkVector<Position>& home);
     template <class Checked, class Report, class Work>
-    std::size_t in_ordered_rounds(const Checked& checked, std::size_t count, Report& report,
-                                  std::vector<Position>& home, Work&& work);
+    std::size_t in_ordered_rounds(const Checked& checked, std::size_t count, Report& report, BulkVector<Position>& home,
+                                  Work&& work);
     template <class Checked, class Collect>
     std::size_t check_column(const Checked& checked, std::size_t column, CellPairs<Real, Dim>& cell_pairs,
-                             Collect& collect, std::vector<Position>& home, const bool* give_up);
+                             Collect& collect, BulkVector<Position>& home, const bool* give_up);
     template <class Checked>
     void gather_visitors(const Checked& checked);
     template <class Checked, class Report>
@@ -103,8 +104,8 @@ private:
     /// The oversized boxes that cover each cell, in x order: cell c's are
     /// boxes[begin[c], begin[c + 1]); `begin` empty where no box is oversized.
     struct Visitors {
-        std::vector<Position> begin;
-        std::vector<Position> boxes;
+        BulkVector<Position> begin;
+        BulkVector<Position> boxes;
         [[nodiscard]] std::size_t bytes_held() const noexcept {
             return (begin.capacity() + boxes.capacity()) * sizeof(Position);
         }
@@ -120,14 +121,14 @@ private:
 template <std::floating_point Real, int Dim>
 template <class Checked, class Report>
 std::size_t CellChecks<Real, Dim>::check_cells(const Checked& checked, float sure_margin, Report& report,
-                                               std::vector<Position>& home) {
+                                               BulkVector<Position>& home) {
     const std::span<const Box<Real, Dim>> boxes = checked.boxes;
     home.clear();
     reserve_with_slack(home, boxes.size());
     for (CellPairs<Real, Dim>& cell_pairs : cell_pairs_) cell_pairs.set_sure_margin(sure_margin);
     const std::size_t moves = in_ordered_rounds(
         checked, checked.cells.cuts->groups(Dim - 1), report, home,
-        [&](std::size_t column, auto& collect, std::vector<Position>& column_home, const bool* give_up) {
+        [&](std::size_t column, auto& collect, BulkVector<Position>& column_home, const bool* give_up) {
             return check_column(checked, column, cell_pairs_.mine(), collect, column_home, give_up);
         });
     home.insert(home.end(), checked.oversized.begin(), checked.oversized.end());
@@ -146,7 +147,7 @@ std::size_t CellChecks<Real, Dim>::check_cells(const Checked& checked, float sur
 template <std::floating_point Real, int Dim>
 template <class Checked, class Report, class Work>
 std::size_t CellChecks<Real, Dim>::in_ordered_rounds(const Checked& checked, std::size_t count, Report& report,
-                                                     std::vector<Position>& home, Work&& work) {
+                                                     BulkVector<Position>& home, Work&& work) {
     // The ids of the positions, read once here: the order does not change while the cells are
     // checked, and a pair is a few instructions, where reading them through `checked` after each
     // report costs a chain of dependent loads.
@@ -201,7 +202,7 @@ template <std::floating_point Real, int Dim>
 template <class Checked, class Collect>
 std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::size_t column,
                                                 CellPairs<Real, Dim>& cell_pairs, Collect& collect,
-                                                std::vector<Position>& home, const bool* give_up) {
+                                                BulkVector<Position>& home, const bool* give_up) {
     const std::span<const Box<Real, Dim>> boxes = checked.boxes;
     const std::span<const Position> cells = checked.cells.entries;
     const std::span<const std::uint32_t> cell_begin = checked.cells.begin;
@@ -263,7 +264,7 @@ void CellChecks<Real, Dim>::gather_visitors(const Checked& checked) {
         return;
     }
     if (!visitors_) visitors_ = std::make_unique<Visitors>();
-    std::vector<Position>& begin = visitors_->begin;
+    BulkVector<Position>& begin = visitors_->begin;
     const std::size_t cells = checked.cells.begin.size() - 1;
     begin.assign(cells + 2, 0);
     const std::span<const Box<Real, Dim>> boxes = checked.boxes;
@@ -286,9 +287,9 @@ void CellChecks<Real, Dim>::gather_visitors(const Checked& checked) {
 template <std::floating_point Real, int Dim>
 template <class Checked, class Report>
 void CellChecks<Real, Dim>::check_oversized(const Checked& checked, Report& report) {
-    std::vector<Position> no_home;  // oversized boxes have no home cell
+    BulkVector<Position> no_home;  // oversized boxes have no home cell
     in_ordered_rounds(checked, checked.oversized.size(), report, no_home,
-                      [&](std::size_t index, auto& collect, std::vector<Position>&, const bool*) {
+                      [&](std::size_t index, auto& collect, BulkVector<Position>&, const bool*) {
                           check_one_oversized(checked, index, collect);
                           return std::size_t{0};
                       });

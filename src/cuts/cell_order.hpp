@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/assert.hpp"
+#include "core/bulk_vector.hpp"
 #include "core/growth.hpp"
 #include "core/held_box.hpp"
 #include "core/id_index.hpp"
@@ -68,7 +69,7 @@ public:
 
     /// The order, to be rewritten as any other order of the same slots before copy()
     /// (column_presort.hpp).
-    [[nodiscard]] std::vector<Slot>& rewritable_order() noexcept { return order_; }
+    [[nodiscard]] BulkVector<Slot>& rewritable_order() noexcept { return order_; }
 
     /// After a detection: the slot each position of its copy holds (the order it was made in).
     [[nodiscard]] std::span<const Slot> copied_from() const noexcept { return next_order_; }
@@ -157,7 +158,7 @@ public:
     }
 
     /// Where the cell check writes the positions of the home boxes, cell by cell: the next order.
-    [[nodiscard]] std::vector<Position>& next() noexcept { return next_order_; }
+    [[nodiscard]] BulkVector<Position>& next() noexcept { return next_order_; }
 
     /// Makes next() the order: the check wrote positions in the copy, the order holds their slots.
     void advance(int threads) {
@@ -180,15 +181,15 @@ private:
         if (own_ids_)
             resize_with_slack(ordered_ids_, n);
         else
-            std::vector<BoxId>().swap(ordered_ids_);
+            BulkVector<BoxId>().swap(ordered_ids_);
     }
 
-    std::vector<Slot> order_;              // every slot once: last step's cells, x-sorted within swept ones
-    std::vector<Position> next_order_;     // positions of the home boxes, cell by cell
-    std::vector<Box<Real, Dim>> ordered_;  // the boxes in order_'s order, copied each step
-    std::vector<BoxId> ordered_ids_;       // and their ids, unless the ids are the slots
-    bool own_ids_ = true;                  // ids were given; else box `slot` has id `slot`
-    std::size_t listed_ = 0;               // slots [0, listed_) are in order_; later ones are new
+    BulkVector<Slot> order_;              // every slot once: last step's cells, x-sorted within swept ones
+    BulkVector<Position> next_order_;     // positions of the home boxes, cell by cell
+    BulkVector<Box<Real, Dim>> ordered_;  // the boxes in order_'s order, copied each step
+    BulkVector<BoxId> ordered_ids_;       // and their ids, unless the ids are the slots
+    bool own_ids_ = true;                 // ids were given; else box `slot` has id `slot`
+    std::size_t listed_ = 0;              // slots [0, listed_) are in order_; later ones are new
 };
 
 }  // namespace smb::detail

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "core/assert.hpp"
+#include "core/bulk_vector.hpp"
 #include "core/tuning.hpp"
 #include "cuts/cell_floor.hpp"
 #include "cuts/cell_rows.hpp"
@@ -67,7 +68,7 @@ public:
     template <class Report, class Id>
     std::size_t check(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
                       std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report,
-                      std::vector<std::uint32_t>& home) {
+                      BulkVector<std::uint32_t>& home) {
         if (entries.size() <= kAllPairsLimit) {
             check_all_pairs(entries, boxes, floor, report, home);
             return 0;
@@ -84,7 +85,7 @@ public:
     /// check() by testing every pair; `home` gets the positions in the order of `entries`.
     template <class Report>
     void check_all_pairs(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
-                         const CellFloor<Real, Dim>& floor, Report& report, std::vector<std::uint32_t>& home) {
+                         const CellFloor<Real, Dim>& floor, Report& report, BulkVector<std::uint32_t>& home) {
         lay_out(entries, boxes, floor);
         laid_out_swept_ = false;
         test_all_pairs(entries.size(), boxes, report, home);
@@ -95,7 +96,7 @@ public:
     template <class Report, class Id>
     std::size_t check_by_sweep(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes,
                                std::span<const Id> ids, const CellFloor<Real, Dim>& floor, Report& report,
-                               std::vector<std::uint32_t>& home) {
+                               BulkVector<std::uint32_t>& home) {
         const std::size_t m = entries.size();
         const std::size_t moves = x_order_.sort(entries, boxes);
         laid_out_swept_ = true;
@@ -238,7 +239,7 @@ private:
     // branch on each group's hits mispredicted about once a group in four.
     template <class Report>
     void test_all_pairs(std::size_t m, std::span<const Box<Real, Dim>> boxes, Report& report,
-                        std::vector<std::uint32_t>& home) {
+                        BulkVector<std::uint32_t>& home) {
         SMB_ASSERT(m <= kMostPaired, "a cell tested pair by pair packs two local numbers in 31 bits");
         report_hits(rows_.columns.hits, rows_.pair_rows(m), boxes, report);
         append_home(m, home);
@@ -280,7 +281,7 @@ private:
     // swept, as registered for the pair test); a branch here would guess wrong for one box in
     // four. Gathered apart first: growing `home` by m and back would make it outgrow the
     // capacity reserved for it, at the last cells.
-    void append_home(std::size_t m, std::vector<std::uint32_t>& home) {
+    void append_home(std::size_t m, BulkVector<std::uint32_t>& home) {
         if (own_home_.size() < m) own_home_.resize(m);
         std::uint32_t* out = own_home_.data();
         for (std::size_t r = 0; r < m; ++r) {

@@ -23,6 +23,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/bulk_vector.hpp"
 #include "core/held_box.hpp"
 #include "core/slot_renumbering.hpp"
 #include "cuts/cut_tree.hpp"
@@ -52,7 +53,7 @@ public:
     /// Rewrites `order` (every slot of `input` once) as the slots grouped by the column of their
     /// box's lower corner, in slot order within a column.
     void sort(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
-              const CutTree<Real, Dim>& cuts, std::vector<Slot>& order) {
+              const CutTree<Real, Dim>& cuts, BulkVector<Slot>& order) {
         const std::size_t n = input.size();
         const std::size_t column_count = cuts.groups(Dim - 1);
         // Slots a removal renumbered, or that arrived, compare against another box's column or

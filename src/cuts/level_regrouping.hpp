@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/assert.hpp"
+#include "core/bulk_vector.hpp"
 #include "core/growth.hpp"
 #include "core/stopwatch.hpp"
 #include "core/thread_team.hpp"
@@ -118,21 +119,20 @@ private:
     static constexpr int axis_of_level(int level) noexcept { return CutTree<Real, Dim>::axis_of_level(level); }
 
     double regroup_first_level(std::size_t n, CutTree<Real, Dim>& cuts, std::span<const Box<Real, Dim>> boxes,
-                               std::vector<Position>& out, std::vector<std::uint32_t>& out_begin);
+                               BulkVector<Position>& out, std::vector<std::uint32_t>& out_begin);
     double regroup_level(int level, CutTree<Real, Dim>& cuts, std::span<const Position> in,
                          std::span<const std::uint32_t> in_begin, std::span<const Box<Real, Dim>> boxes,
-                         std::vector<Position>& out, std::vector<std::uint32_t>& out_begin);
+                         BulkVector<Position>& out, std::vector<std::uint32_t>& out_begin);
     void publish_marks();
-    void keep_columns_whole(CutTree<Real, Dim>& cuts, std::vector<Position>& in,
-                            std::span<const std::uint32_t> in_begin, std::vector<Position>& out,
-                            std::vector<std::uint32_t>& out_begin);
+    void keep_columns_whole(CutTree<Real, Dim>& cuts, BulkVector<Position>& in, std::span<const std::uint32_t> in_begin,
+                            BulkVector<Position>& out, std::vector<std::uint32_t>& out_begin);
 
-    std::array<std::vector<Position>, 2> lists_;       // entries of a level, grouped by segment
+    std::array<BulkVector<Position>, 2> lists_;        // entries of a level, grouped by segment
     std::array<std::vector<std::uint32_t>, 2> begin_;  // group offsets into lists_
     int cells_list_ = 0;                               // which of lists_ holds the cells
-    std::vector<std::uint32_t> ranges_;                // per entry of the level: first | last segment << 16
+    BulkVector<std::uint32_t> ranges_;                 // per entry of the level: first | last segment << 16
     std::vector<std::uint32_t> counts_;                // the index array of levels 1 and deeper
-    std::vector<std::uint8_t> oversized_;              // per position; written through atomic_ref
+    BulkVector<std::uint8_t> oversized_;               // per position; written through atomic_ref
     std::vector<Position> oversized_list_;
     GroupLocator<Real, Dim> locator_;
     PerThread<Worker> workers_;
@@ -146,8 +146,8 @@ private:
 /// is located: the entries of the level above are the cells' entries as they are (moved, not
 /// copied), each group's first segment holding them and its other segments empty.
 template <std::floating_point Real, int Dim>
-void LevelRegrouping<Real, Dim>::keep_columns_whole(CutTree<Real, Dim>& cuts, std::vector<Position>& in,
-                                                    std::span<const std::uint32_t> in_begin, std::vector<Position>& out,
+void LevelRegrouping<Real, Dim>::keep_columns_whole(CutTree<Real, Dim>& cuts, BulkVector<Position>& in,
+                                                    std::span<const std::uint32_t> in_begin, BulkVector<Position>& out,
                                                     std::vector<std::uint32_t>& out_begin) {
     const std::size_t groups = cuts.groups(Dim - 1);
     const std::uint32_t k = cuts.segments();
@@ -181,8 +181,7 @@ void LevelRegrouping<Real, Dim>::publish_marks() {
 /// offsets that keep the counting sort stable.
 template <std::floating_point Real, int Dim>
 double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Real, Dim>& cuts,
-                                                       std::span<const Box<Real, Dim>> boxes,
-                                                       std::vector<Position>& out,
+                                                       std::span<const Box<Real, Dim>> boxes, BulkVector<Position>& out,
                                                        std::vector<std::uint32_t>& out_begin) {
     const std::uint32_t k = cuts.segments();
     const auto shares = static_cast<std::size_t>(threads_);
@@ -262,7 +261,7 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
 template <std::floating_point Real, int Dim>
 double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& cuts, std::span<const Position> in,
                                                  std::span<const std::uint32_t> in_begin,
-                                                 std::span<const Box<Real, Dim>> boxes, std::vector<Position>& out,
+                                                 std::span<const Box<Real, Dim>> boxes, BulkVector<Position>& out,
                                                  std::vector<std::uint32_t>& out_begin) {
     const std::size_t groups = cuts.groups(level);
     const std::uint32_t k = cuts.segments();

@@ -29,6 +29,7 @@
 #include <span>
 #include <vector>
 
+#include "core/bulk_vector.hpp"
 #include "core/growth.hpp"
 #include "core/held_box.hpp"
 #include "core/id_index.hpp"
@@ -381,18 +382,18 @@ private:
     // Over the fat boxes of the last rebuild, in small cells: a box that left its skin asks
     // them for its neighbours.
     PersistentCutPipeline<float, Dim, float> cells_{CellShape::cut_on_every_axis};
-    std::vector<Held> fat_;              // per position
-    std::vector<Held> held_;             // per position: this detection's boxes, held as floats; one more of padding
-    std::vector<Slot> slot_of_;          // per position: the caller's index
-    std::span<const BoxId> keys_;        // per slot: the name it is reported under (empty: the slot)
-    std::vector<BoxId> key_of_;          // per position, with keys: keys_[slot_of_[p]]
-    std::vector<Position> position_of_;  // per slot ever seen since the rebuild
-    std::vector<std::uint8_t> state_;    // per position: kMoved, kFresh, kGone, kDone
-    std::vector<Position> moved_;        // positions with kMoved, each once
-    std::vector<Position> fresh_;        // positions with kFresh, in order
-    Candidates candidates_;              // pairs of positions whose fat boxes overlap
-    std::vector<Position> gone_;         // positions whose slot left the array in this detection
-    std::vector<std::uint64_t> dirty_;   // per position, a bit: fresh or gone in this detection
+    BulkVector<Held> fat_;              // per position
+    BulkVector<Held> held_;             // per position: this detection's boxes, held as floats; one more of padding
+    BulkVector<Slot> slot_of_;          // per position: the caller's index
+    std::span<const BoxId> keys_;       // per slot: the name it is reported under (empty: the slot)
+    std::vector<BoxId> key_of_;         // per position, with keys: keys_[slot_of_[p]]
+    BulkVector<Position> position_of_;  // per slot ever seen since the rebuild
+    BulkVector<std::uint8_t> state_;    // per position: kMoved, kFresh, kGone, kDone
+    std::vector<Position> moved_;       // positions with kMoved, each once
+    std::vector<Position> fresh_;       // positions with kFresh, in order
+    Candidates candidates_;             // pairs of positions whose fat boxes overlap
+    std::vector<Position> gone_;        // positions whose slot left the array in this detection
+    std::vector<std::uint64_t> dirty_;  // per position, a bit: fresh or gone in this detection
     int threads_ = 1;
     PerThread<Scan> scans_;
 };

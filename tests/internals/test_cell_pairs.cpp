@@ -54,8 +54,8 @@ PairSet expected_pairs(const Cell<Real, Dim>& cell) {
 }
 
 template <class Real, int Dim>
-std::vector<std::uint32_t> expected_home(const Cell<Real, Dim>& cell) {
-    std::vector<std::uint32_t> home;
+BulkVector<std::uint32_t> expected_home(const Cell<Real, Dim>& cell) {
+    BulkVector<std::uint32_t> home;
     for (const std::uint32_t position : cell.entries) {
         bool inside = true;
         for (int k = 0; k < Dim; ++k) inside = inside && cell.boxes[position].min[k] >= cell.floor[k];
@@ -97,7 +97,7 @@ template <class Real, int Dim>
 struct Checked {
     PairSet pairs;
     std::size_t reports = 0;
-    std::vector<std::uint32_t> home;
+    BulkVector<std::uint32_t> home;
 };
 
 template <class Real, int Dim, class Run>
@@ -139,7 +139,7 @@ TYPED_TEST(CellPairsTest, AllPairsAndSweepReportTheSamePairsOnce) {
             const std::span<const Box<Real, Dim>> boxes(cell.boxes);
             const std::span<const BoxId> ids(cell.ids);
             const PairSet expected = expected_pairs(cell);
-            std::vector<std::uint32_t> home = expected_home(cell);
+            BulkVector<std::uint32_t> home = expected_home(cell);
 
             const auto all_pairs = run_check<Real, Dim>(
                 [&](auto& report, auto& out) { cell_pairs.check_all_pairs(entries, boxes, cell.floor, report, out); });
@@ -171,7 +171,7 @@ TYPED_TEST(CellPairsTest, AllPairsAndSweepReportTheSamePairsOnce) {
             std::vector<std::uint32_t> sorted_entries(cell.entries);
             std::sort(sorted_entries.begin(), sorted_entries.end());
             EXPECT_EQ(swept_positions, sorted_entries);
-            std::vector<std::uint32_t> swept_home = swept.home;
+            BulkVector<std::uint32_t> swept_home = swept.home;
             std::sort(swept_home.begin(), swept_home.end());
             std::sort(home.begin(), home.end());
             EXPECT_EQ(swept_home, home);
@@ -204,7 +204,7 @@ TEST(CellPairs, DoubleGapsBelowFloatPrecisionAreTestedExactly) {
     for (const bool swept : {false, true}) {
         SCOPED_TRACE(swept ? "sweep" : "all pairs");
         PairSet pairs;
-        std::vector<std::uint32_t> home;
+        BulkVector<std::uint32_t> home;
         auto report = [&](std::uint32_t a, std::uint32_t b) { pairs.insert(ordered(a, b)); };
         if (swept) {
             cell_pairs.check_by_sweep(std::span<const std::uint32_t>(entries), std::span<const Box<double, 3>>(boxes),

@@ -68,11 +68,11 @@ TEST(ColumnPresort, SortsEverySlotOnceByColumnAndBySlotWithin) {
     const std::vector<Box<float, 3>> boxes = scattered_boxes<3>(5000, 100.0F, random);
     const CutTree<float, 3> cuts = planes_for<3>(boxes, 7);
     ColumnPresort<float, 3, float> presort;
-    std::vector<Slot> order(boxes.size());
+    BulkVector<Slot> order(boxes.size());
     std::iota(order.rbegin(), order.rend(), Slot{0});
     presort.sort(boxes, {}, cuts, order);
     ASSERT_EQ(order.size(), boxes.size());
-    std::vector<Slot> sorted = order;
+    BulkVector<Slot> sorted = order;
     std::sort(sorted.begin(), sorted.end());
     for (std::size_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], i);
     for (std::size_t i = 1; i < order.size(); ++i) {
@@ -91,7 +91,7 @@ TEST(ColumnPresort, StartsWhenHintsMissAndStopsWhenBoxesKeepTheirColumns) {
     std::vector<Box<float, 2>> boxes = scattered_boxes<2>(4000, 100.0F, random);
     const CutTree<float, 2> cuts = planes_for<2>(boxes, 16);
     ColumnPresort<float, 2, float> presort;
-    std::vector<Slot> order(boxes.size());
+    BulkVector<Slot> order(boxes.size());
     presort.judge(0.1);
     EXPECT_FALSE(presort.sorting());
     presort.judge(0.6);
