@@ -379,14 +379,13 @@ private:
     CandidateLives lives_;
     bool exhausted_ = false;  // step aside at the next detect()
 
-    // Over the fat boxes of the last rebuild, in small cells: a box that left its skin asks
-    // them for its neighbours.
+    // The last rebuild's fat boxes in small cells, where a box that left its skin finds its neighbours.
     PersistentCutPipeline<float, Dim, float> cells_{CellShape::cut_on_every_axis};
     BulkVector<Held> fat_;              // per position
     BulkVector<Held> held_;             // per position: this detection's boxes, held as floats; one more of padding
     BulkVector<Slot> slot_of_;          // per position: the caller's index
     std::span<const BoxId> keys_;       // per slot: the name it is reported under (empty: the slot)
-    std::vector<BoxId> key_of_;         // per position, with keys: keys_[slot_of_[p]]
+    BulkVector<BoxId> key_of_;          // per position, with keys: keys_[slot_of_[p]]
     BulkVector<Position> position_of_;  // per slot ever seen since the rebuild
     BulkVector<std::uint8_t> state_;    // per position: kMoved, kFresh, kGone, kDone
     std::vector<Position> moved_;       // positions with kMoved, each once
