@@ -51,29 +51,11 @@ public:
     /// Reports every overlapping pair of `input` once, each as report(key_a, key_b) or in runs
     /// through report.append(). Throws InvalidBoxError (naming the index) before any change
     /// when a box of unchecked input is invalid. `skin` > 0 lets the skin list detect.
+    /// Defined in engine/detection_engine_detect.hpp and compiled once per box type and report
+    /// (engine/engine_reports.hpp), so that the front doors do not each compile the pipeline.
     template <class Report>
     void detect(const EngineInput<Real, Dim>& input, const DetectionSettings& settings, double skin, Report& report,
-                DetectStats& stats, DetectProfile& profile) {
-        const Stopwatch scan{settings.profile};
-        skin_detected_ = false;
-        if (input.boxes.empty()) {
-            cuts_.detect_nothing(settings, report, profile);
-            skin_.clear();
-            return;
-        }
-        SceneBounds<Real, Dim> bounds;
-        if (input.bounds != nullptr)
-            bounds = *input.bounds;
-        else if (!input.valid || HeldCutPipeline<Real, Dim>::kMayRound)
-            bounds = checked_bounds(input.boxes);  // throws before any change
-        cuts_.judge(input.boxes, bounds);
-        profile.scan_seconds += scan.seconds();
-        skin_detected_ = detected_with_skin(input, bounds, settings, skin, report, stats, profile);
-        if (!skin_detected_) {
-            cuts_.forget_slots_from(input.boxes.size());
-            cuts_.detect(input.boxes, input.keys, bounds, settings, report, profile);
-        }
-    }
+                DetectStats& stats, DetectProfile& profile);
 
     [[nodiscard]] HeldPrecision precision() const noexcept { return cuts_.precision(); }
     /// Pairs the held floats could not settle, tested again on the input, in the last detection.
@@ -102,31 +84,11 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept { return cuts_.bytes_held() + skin_.bytes_held(); }
 
 private:
-    /// With a skin, on floats (the input's own, or double input that floats resolve): the skin
-    /// list detects, and the cuts give their memory back when it (re)builds. When it steps
-    /// aside (SkinList::detect()), the cuts detect for tuning::skin_pause detections.
+    /// With a skin, on floats: whether the skin list detected (see detection_engine_detect.hpp).
     template <class Report>
     bool detected_with_skin(const EngineInput<Real, Dim>& input, const SceneBounds<Real, Dim>& bounds,
                             const DetectionSettings& settings, double skin, Report& report, DetectStats& stats,
-                            DetectProfile& profile) {
-        if (skin == 0 || cuts_.precision() != HeldPrecision::floats) {
-            skin_.clear();
-            return false;
-        }
-        if (skin_pause_ > 0) {
-            --skin_pause_;
-            return false;
-        }
-        const bool detected = skin_.detect(input.boxes, input.keys, cuts_.origin(), bounds.lo, bounds.hi, skin,
-                                           settings, report, stats, profile);
-        if (!detected) {
-            skin_pause_ = tuning::skin_pause;
-            return false;
-        }
-        // A (re)build is the first skin detection after the cuts' ones.
-        if (skin_.rebuilt()) cuts_.release();
-        return true;
-    }
+                            DetectProfile& profile);
 
     HeldCutPipeline<Real, Dim> cuts_;
     SkinList<Real, Dim> skin_;
