@@ -3,12 +3,16 @@
 // Field-level parsing shared by the scene and pair CSV readers. Problems are thrown as
 // std::invalid_argument with a message naming the column; the readers add file and line.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace smb::io {
+
+/// The bytes a CSV writer gathers before it hands them to the stream: large writes, few calls.
+inline constexpr std::size_t csv_flush_threshold = std::size_t{1} << 20;
 
 /// Splits a line at commas into `fields` (cleared first). Quoting is not part of our formats.
 void split_fields(std::string_view line, std::vector<std::string_view>& fields);

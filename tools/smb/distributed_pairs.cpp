@@ -22,12 +22,6 @@ namespace smb::cli {
 
 namespace {
 
-template <int Dim>
-struct Row {
-    BoxId id;
-    Box<double, Dim> box;
-};
-
 /// What rank 0 tells the others before each frame: a frame follows, the scene ended, or rank 0
 /// failed (a malformed line, a failed write) and every rank stops.
 enum FrameStatus : std::uint64_t { frame_follows, scene_ended, reader_failed };
@@ -37,7 +31,7 @@ template <int Dim>
 void deal_rows(const io::SceneFrame<Dim>* frame, int rank, int ranks, std::vector<BoxId>& ids,
                std::vector<Box<double, Dim>>& boxes) {
     std::vector<int> counts(static_cast<std::size_t>(ranks), 0), displacements(counts.size(), 0);
-    std::vector<Row<Dim>> rows;
+    std::vector<IdRow<Dim>> rows;
     if (rank == 0) {
         const std::size_t n = frame->ids.size();
         rows.resize(n);
@@ -51,15 +45,15 @@ void deal_rows(const io::SceneFrame<Dim>* frame, int rank, int ranks, std::vecto
         std::vector<int> fill = displacements;
         for (std::size_t i = 0; i < n; ++i) {
             rows[static_cast<std::size_t>(fill[i % static_cast<std::size_t>(ranks)]++)] =
-                Row<Dim>{frame->ids[i], frame->boxes[i]};
+                IdRow<Dim>{frame->ids[i], frame->boxes[i]};
         }
     }
     int mine = 0;
     MPI_Scatter(counts.data(), 1, MPI_INT, &mine, 1, MPI_INT, 0, MPI_COMM_WORLD);
     MPI_Datatype row_type = MPI_DATATYPE_NULL;
-    MPI_Type_contiguous(static_cast<int>(sizeof(Row<Dim>)), MPI_BYTE, &row_type);
+    MPI_Type_contiguous(static_cast<int>(sizeof(IdRow<Dim>)), MPI_BYTE, &row_type);
     MPI_Type_commit(&row_type);
-    std::vector<Row<Dim>> my_rows(static_cast<std::size_t>(mine));
+    std::vector<IdRow<Dim>> my_rows(static_cast<std::size_t>(mine));
     MPI_Scatterv(rows.data(), counts.data(), displacements.data(), row_type, my_rows.data(), mine, row_type, 0,
                  MPI_COMM_WORLD);
     MPI_Type_free(&row_type);

@@ -25,10 +25,6 @@ namespace smb::cli {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
 /// What rank 0 reports beyond the serial summary, per step after the first.
 struct DistributedRecord {
     int ranks = 1;

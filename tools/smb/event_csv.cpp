@@ -8,12 +8,13 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "csv_fields.hpp"
+
 namespace smb::io {
 
 namespace {
 
 constexpr std::string_view event_header = "frame,a,b,event";
-constexpr std::size_t flush_threshold = std::size_t{1} << 20;
 
 }  // namespace
 
@@ -43,7 +44,7 @@ void EventWriter::write_frame(std::uint64_t frame, std::span<const Pair> begun, 
             fmt::format_to(out, "{},{},{},end\n", frame, ended[e].a, ended[e].b);
             ++e;
         }
-        if (buffer_.size() >= flush_threshold) flush();
+        if (buffer_.size() >= csv_flush_threshold) flush();
     }
 }
 

@@ -4,7 +4,16 @@
 
 #include <mpi.h>
 
+#include "smb/box.hpp"
+
 namespace smb::cli {
+
+/// A box and its id as one record, the unit the distributed commands send between ranks.
+template <int Dim>
+struct IdRow {
+    BoxId id;
+    Box<double, Dim> box;
+};
 
 class MpiRun {
 public:

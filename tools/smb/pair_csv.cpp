@@ -15,7 +15,6 @@ namespace smb::io {
 namespace {
 
 constexpr std::string_view pair_header = "frame,a,b";
-constexpr std::size_t flush_threshold = std::size_t{1} << 20;
 
 }  // namespace
 
@@ -36,7 +35,7 @@ void PairWriter::write_frame(std::uint64_t frame, std::span<const Pair> pairs) {
     auto out = std::back_inserter(buffer_);
     for (const Pair& pair : pairs) {
         fmt::format_to(out, "{},{},{}\n", frame, pair.a, pair.b);
-        if (buffer_.size() >= flush_threshold) flush();
+        if (buffer_.size() >= csv_flush_threshold) flush();
     }
 }
 

@@ -3,29 +3,24 @@
 
 #include <cstdint>
 
+#include "mpi_run.hpp"
 #include "smb/workload/reference_grid.hpp"
 
 namespace smb::cli {
 
 namespace {
 
-template <int Dim>
-struct Row {
-    BoxId id;
-    Box<double, Dim> box;
-};
-
 /// Sends `rows` to rank + 1 and returns what rank - 1 sent. Collective over the ring.
 template <int Dim>
-std::vector<Row<Dim>> pass_along(MPI_Comm comm, const std::vector<Row<Dim>>& rows, int rank, int ranks) {
+std::vector<IdRow<Dim>> pass_along(MPI_Comm comm, const std::vector<IdRow<Dim>>& rows, int rank, int ranks) {
     const int next = (rank + 1) % ranks;
     const int previous = (rank + ranks - 1) % ranks;
     std::uint64_t count = rows.size();
     std::uint64_t incoming = 0;
     MPI_Sendrecv(&count, 1, MPI_UINT64_T, next, 0, &incoming, 1, MPI_UINT64_T, previous, 0, comm, MPI_STATUS_IGNORE);
-    std::vector<Row<Dim>> received(incoming);
+    std::vector<IdRow<Dim>> received(incoming);
     MPI_Datatype row_type = MPI_DATATYPE_NULL;
-    MPI_Type_contiguous(static_cast<int>(sizeof(Row<Dim>)), MPI_BYTE, &row_type);
+    MPI_Type_contiguous(static_cast<int>(sizeof(IdRow<Dim>)), MPI_BYTE, &row_type);
     MPI_Type_commit(&row_type);
     MPI_Sendrecv(rows.data(), static_cast<int>(count), row_type, next, 1, received.data(), static_cast<int>(incoming),
                  row_type, previous, 1, comm, MPI_STATUS_IGNORE);
@@ -42,7 +37,7 @@ std::vector<Pair> ring_reference_pairs(MPI_Comm comm, std::span<const BoxId> ids
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &ranks);
     std::vector<Pair> pairs = workload::grid_pairs<double, Dim>(ids, boxes);
-    std::vector<Row<Dim>> visiting(ids.size());
+    std::vector<IdRow<Dim>> visiting(ids.size());
     for (std::size_t i = 0; i < ids.size(); ++i) visiting[i] = {ids[i], boxes[i]};
     std::vector<BoxId> both_ids;
     std::vector<Box<double, Dim>> both_boxes;
@@ -52,7 +47,7 @@ std::vector<Pair> ring_reference_pairs(MPI_Comm comm, std::span<const BoxId> ids
         const int source = (rank + ranks - round) % ranks;
         both_ids.assign(ids.begin(), ids.end());
         both_boxes.assign(boxes.begin(), boxes.end());
-        for (const Row<Dim>& row : visiting) {
+        for (const IdRow<Dim>& row : visiting) {
             both_ids.push_back(row.id);
             both_boxes.push_back(row.box);
         }

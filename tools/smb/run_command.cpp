@@ -28,10 +28,6 @@ namespace smb::cli {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
 /// Compares one detection (sorted) with the reference and records the outcome.
 template <int Dim>
 void check_step(const workload::DynamicEnvironment<Dim>& environment, const std::vector<Pair>& detected,

@@ -2,6 +2,7 @@
 #pragma once
 // What `smb run` measured, and its two renderings: a short text summary and one JSON object.
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -16,6 +17,12 @@
 #include "smb/stats.hpp"
 
 namespace smb::cli {
+
+using Clock = std::chrono::steady_clock;
+
+[[nodiscard]] inline double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 struct StepRecord {
     double world_update_seconds = 0;  ///< the batch insert / remove / update calls

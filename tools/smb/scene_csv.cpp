@@ -20,7 +20,6 @@ constexpr std::string_view header_3d = "frame,id,xmin,ymin,zmin,xmax,ymax,zmax";
 constexpr std::string_view coordinate_names_2d[] = {"xmin", "ymin", "xmax", "ymax"};
 constexpr std::string_view coordinate_names_3d[] = {"xmin", "ymin", "zmin", "xmax", "ymax", "zmax"};
 constexpr std::string_view byte_order_mark = "\xEF\xBB\xBF";
-constexpr std::size_t flush_threshold = std::size_t{1} << 20;
 
 }  // namespace
 
@@ -183,7 +182,7 @@ void SceneWriter::write_frame(std::uint64_t frame, std::span<const BoxId> ids,
             fmt::format_to(out, "{},{},{},{},{},{},{},{}\n", frame, ids[i], boxes[i].min[0], boxes[i].min[1],
                            boxes[i].min[2], boxes[i].max[0], boxes[i].max[1], boxes[i].max[2]);
         }
-        if (buffer_.size() >= flush_threshold) flush();
+        if (buffer_.size() >= csv_flush_threshold) flush();
     }
 }
 
