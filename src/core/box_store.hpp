@@ -50,7 +50,7 @@ public:
         ++changes_;
         require_same_length(ids.size(), boxes.size(), "insert");
         validate_boxes(ids, boxes);
-        reserve_for(ids.size());
+        reserve_for(ids.size(), ids.empty() ? 0 : *std::max_element(ids.begin(), ids.end()));
         // The index itself finds repeats, within the batch as well as against the world; the
         // ids this batch added are taken out again before the error leaves.
         const auto first = static_cast<Slot>(boxes_.size());
@@ -107,7 +107,7 @@ public:
         });
         std::size_t fresh = 0;
         for (BoxId i = 0; i < n; ++i) fresh += contains(i) ? 0 : 1;
-        reserve_for(fresh);
+        reserve_for(fresh, n == 0 ? 0 : n - 1);
         reserve_removed_log(doomed.size());
         for (const auto& [id, slot] : doomed) kill(id, slot);
         for (BoxId i = 0; i < n; ++i) {
@@ -198,7 +198,8 @@ private:
     }
     static std::string unknown_message(BoxId id) { return "box " + std::to_string(id) + " is not in the world"; }
     static std::string duplicate_message(BoxId id) { return "box " + std::to_string(id) + " is already in the world"; }
-    void reserve_for(std::size_t extra) {
+    /// Room for `extra` more boxes, whose largest id is `largest`.
+    void reserve_for(std::size_t extra, BoxId largest) {
         // The deepest SMB list numbers 2^Dim corners per slot in 32 bits.
         constexpr std::size_t max_slots = (std::size_t{1} << (32 - Dim)) - 1;
         if (boxes_.size() + extra > max_slots)
@@ -208,7 +209,7 @@ private:
         reserve_with_slack(boxes_, boxes_.size() + extra);
         reserve_with_slack(ids_, ids_.size() + extra);
         reserve_with_slack(alive_, alive_.size() + extra);
-        slot_of_id_.reserve(extra);
+        slot_of_id_.reserve(extra, largest);
     }
     void append(BoxId id, const Box<Real, Dim>& box) {
         const auto slot = static_cast<Slot>(boxes_.size());

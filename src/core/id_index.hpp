@@ -67,8 +67,11 @@ public:
         --count_;
     }
 
-    /// Makes room for `extra` more ids without reallocating the hash map's buckets.
-    void reserve(std::size_t extra) {
+    /// Makes room for `extra` more ids, the largest of them `largest`: the array grows at once to
+    /// hold it, where it will (inserted one by one, a batch would double the array about log2(n)
+    /// times, each time a copy into fresh memory), and the hash map's buckets are reserved.
+    void reserve(std::size_t extra, BoxId largest) {
+        if (largest >= dense_.size() && largest < dense_limit(count_ + extra)) resize_dense(largest + 1);
         if (!sparse_.empty()) sparse_.reserve(sparse_.size() + extra);
     }
 
@@ -105,7 +108,10 @@ private:
         // Doubling (up to the limit), so that ids arriving one by one grow the array, and move
         // the hash map's ids, only a logarithmic number of times.
         const std::size_t doubled = std::max<std::size_t>(2 * dense_.size(), 64);
-        const std::size_t size = std::max<std::size_t>(id + 1, std::min(doubled, dense_limit(count_ + 1)));
+        resize_dense(std::max<std::size_t>(id + 1, std::min(doubled, dense_limit(count_ + 1))));
+    }
+
+    void resize_dense(std::size_t size) {
         dense_.resize(size, kNoSlot);
         // Ids of the hash map that the array now covers move to it, so that lookups of the
         // common (dense) ids never touch the map.

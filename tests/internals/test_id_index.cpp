@@ -111,5 +111,29 @@ TEST(IdIndex, DenseIdsCostFourBytesEachAndSparseIdsNeverGrowTheArray) {
     EXPECT_LT(sparse.bytes_held(), 1000 * 64);
 }
 
+TEST(IdIndex, ABatchReservedAtOnceHoldsItsIdsInOneArrayAndMovesTheMapsIdsIn) {
+    IdIndex index;
+    // 3000 starts in the hash map; the batch's reserve grows the array past it, once.
+    ASSERT_TRUE(index.insert(3000, 9));
+    std::map<BoxId, Slot> reference{{3000, 9}};
+    index.reserve(2500, 2499 + 1000);
+    EXPECT_EQ(index.find(3000), 9U);
+    const std::size_t reserved = index.bytes_held();
+    for (BoxId id = 1000; id < 3500; ++id) {
+        if (id == 3000) continue;
+        ASSERT_TRUE(index.insert(id, static_cast<Slot>(id)));
+        reference.emplace(id, static_cast<Slot>(id));
+    }
+    EXPECT_EQ(index.bytes_held(), reserved) << "no id of the batch grew the array again";
+    EXPECT_LE(reserved, 3500 * sizeof(Slot) + 256) << "the array and the hash map's few buckets";
+    expect_same(index, reference);
+    // A largest id beyond twice the boxes stays out of the array, as it would one by one.
+    index.reserve(1, BoxId{1} << 40);
+    EXPECT_EQ(index.bytes_held(), reserved);
+    ASSERT_TRUE(index.insert(BoxId{1} << 40, 1));
+    reference.emplace(BoxId{1} << 40, 1);
+    expect_same(index, reference);
+}
+
 }  // namespace
 }  // namespace smb::detail
