@@ -15,10 +15,9 @@ namespace smb::detail {
 template class DetectionEngine<SMB_ENGINE_REAL, SMB_ENGINE_DIM>;
 
 // The report is the variadic tail: its template arguments hold commas.
-#define SMB_INSTANTIATE_DETECT(Real, Dim, ...)                                                           \
-    template void DetectionEngine<Real, Dim>::detect<__VA_ARGS__>(const EngineInput<Real, Dim>&,        \
-                                                                 const DetectionSettings&, double,     \
-                                                                 __VA_ARGS__&, DetectStats&, DetectProfile&);
+#define SMB_INSTANTIATE_DETECT(Real, Dim, ...)                     \
+    template void DetectionEngine<Real, Dim>::detect<__VA_ARGS__>( \
+        const EngineInput<Real, Dim>&, const DetectionSettings&, double, __VA_ARGS__&, DetectStats&, DetectProfile&);
 SMB_FOR_EACH_ENGINE_REPORT(SMB_INSTANTIATE_DETECT, SMB_ENGINE_REAL, SMB_ENGINE_DIM)
 #undef SMB_INSTANTIATE_DETECT
 

@@ -11,8 +11,8 @@
 #include "periodic/periodic_report.hpp"
 
 // SMB_FOR_EACH_ENGINE_REPORT(X, Real, Dim) expands to X(Real, Dim, report type) for each.
-#define SMB_FOR_EACH_ENGINE_REPORT(X, Real, Dim)                       \
-    X(Real, Dim, ::smb::detail::PairOutput)                            \
+#define SMB_FOR_EACH_ENGINE_REPORT(X, Real, Dim)                               \
+    X(Real, Dim, ::smb::detail::PairOutput)                                    \
     X(Real, Dim, ::smb::detail::PackedFilterReport<::smb::detail::PairOutput>) \
     X(Real, Dim, ::smb::detail::FilteredReport<::smb::detail::PairOutput>)     \
     X(Real, Dim, ::smb::detail::PeriodicReport<Real, Dim>)
