@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Field-level parsing shared by the scene and pair CSV readers. Problems are thrown as
-// std::invalid_argument with a message naming the column; the readers add file and line.
+// Field-level parsing shared by the scene and pair CSV readers, and the writers' flush size.
+// Problems are thrown as std::invalid_argument with a message naming the column; the readers add
+// file and line.
 
 #include <cstddef>
 #include <cstdint>

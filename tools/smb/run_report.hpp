@@ -20,6 +20,7 @@ namespace smb::cli {
 
 using Clock = std::chrono::steady_clock;
 
+/// Wall seconds since `start`, as `smb run` and its distributed form time their steps.
 [[nodiscard]] inline double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
