@@ -43,6 +43,18 @@ inline constexpr std::size_t sample_per_segment = 256;
 /// Below this many keys the recursive quantile selection beats the radix sort (128 keys: 2.9 µs
 /// against 0.94 µs; 64 keys: 0.08 against 0.71; bench/bench_quantiles.cpp).
 inline constexpr std::size_t quantile_radix_from = 128;
+/// The boxes are copied grouped by column (src/cuts/column_presort.hpp) once the first level's
+/// hint misses on more than this share of its entries. At 1M boxes in 3D (`smb run --pipeline
+/// detector`) it missed on 2% at Λ = 0.01, 7% at 0.02, 14% at 0.03 and 62% at 0.1, and the copy
+/// by column took a step from 100-105 to 94-97 ms at 0.02, 106-109 to 92-96 at 0.03 and 107-112
+/// to 99-103 at 0.1 (the copy 8-10 ms dearer than the gather in last step's order, the levels
+/// 13-14 ms cheaper); below about 5% last step's order, x-sorted in each column, serves better.
+inline constexpr double column_copy_start_misses = 0.05;
+/// It stops once fewer than this share of the sampled boxes changed column since the last such
+/// copy: a kept order then reads most columns in one run.
+inline constexpr double column_copy_stop_changed = 0.5;
+/// One box in this many is sampled for that share: 62,500 at 1M, for a sixteenth of a locate a box.
+inline constexpr std::size_t column_copy_sample_stride = 16;
 /// Detections between two judgements of floats against doubles in a held scene: a scene of
 /// points may grow into boxes; judging costs a pass over the boxes, one in 64 is noise.
 inline constexpr std::size_t judge_precision_every = 64;

@@ -67,10 +67,6 @@ public:
     /// of the copy holds.
     [[nodiscard]] std::span<const Slot> order() const noexcept { return order_; }
 
-    /// The order, to be rewritten as any other order of the same slots before copy()
-    /// (column_presort.hpp).
-    [[nodiscard]] BulkVector<Slot>& rewritable_order() noexcept { return order_; }
-
     /// After a detection: the slot each position of its copy holds (the order it was made in).
     [[nodiscard]] std::span<const Slot> copied_from() const noexcept { return next_order_; }
 
@@ -95,7 +91,8 @@ public:
         }
     }
 
-    /// copy() where the order follows no cell (the first detection, new cuts): the order is
+    /// copy() where the order follows no cell (the first detection, new cuts, boxes that jumped
+    /// across cells: column_presort.hpp): the order is
     /// rewritten as the slots grouped by column_of(held box) (< `columns`), in slot order within
     /// a column, and every box is copied to its column's run by a counting sort. The caller's
     /// boxes are read twice in order and each held box written once, where sorting the order

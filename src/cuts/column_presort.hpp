@@ -1,18 +1,19 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The order of the boxes sorted again by column before the copy, while the boxes move across
-// cells at every step (the paper's Λ = 0.1: every box jumps up to a tenth of the scene).
+// The boxes copied grouped by column again, while they move across cells at every step (the
+// paper's Λ = 0.1: every box jumps up to a tenth of the scene).
 //
 // The persistent cuts read the boxes in last step's cell order (cell_order.hpp), which is the
 // order of this step's cells only while few boxes changed cell. Where most did, each column's
 // boxes lie all over the ordered copy, and every pass after the copy (the levels and the cell
-// check) misses the cache on nearly every box. A counting sort of the slots by the column that
-// holds each box's lower corner, against the kept planes, costs one streaming pass over the
-// caller's boxes and one scatter of the slots; the copy then lays each column out in one run.
-// Where boxes keep their cells, last step's order is already that (and x-sorted within each
-// column), so the sort is left out: it starts when the first level's hints miss on a quarter
-// of the boxes, and stops when fewer than half of the boxes changed column since the last sort.
-// Only speed depends on it: the order is any order of the slots.
+// check) misses the cache on nearly every box. The detection then copies the boxes as a cold
+// one does (CellOrder::copy_by_column): a counting sort by the column that holds each box's
+// lower corner against the kept planes, the caller's boxes read twice in order and each written
+// once to its column's run, where a gather in last step's order would read every box from a
+// different place. Where boxes keep their cells, last step's order is already that (and x-sorted
+// within each column), so the regrouped copy is left out: it starts when the first level's hints
+// miss on a quarter of the boxes, and stops when fewer than half of a sample of the boxes changed
+// column since the last one. Only speed depends on it: the order is any order of the slots.
 
 #include <algorithm>
 #include <array>
@@ -20,12 +21,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <type_traits>
 #include <vector>
 
-#include "core/bulk_vector.hpp"
 #include "core/held_box.hpp"
-#include "core/slot_renumbering.hpp"
+#include "core/tuning.hpp"
 #include "cuts/cut_tree.hpp"
 #include "smb/box.hpp"
 
@@ -37,65 +36,45 @@ public:
     /// After a detection that followed last step's order: the share of the first level's entries
     /// whose segment the hint missed.
     void judge(double first_level_misses) noexcept {
-        if (first_level_misses > kStartMisses) sorting_ = true;
+        if (first_level_misses > tuning::column_copy_start_misses) sorting_ = true;
     }
 
-    /// Whether the next detection sorts the order by column first.
+    /// Whether the next detection copies the boxes grouped by column (copy_by_column()).
     [[nodiscard]] bool sorting() const noexcept { return sorting_; }
 
     /// Forgets the columns (new planes, a new origin): the next judgement decides afresh.
     void forget() {
         sorting_ = false;
         std::vector<std::uint32_t>().swap(columns_);
-        std::vector<std::uint32_t>().swap(counts_);
     }
 
-    /// Rewrites `order` (every slot of `input` once) as the slots grouped by the column of their
-    /// box's lower corner, in slot order within a column.
-    void sort(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
-              const CutTree<Real, Dim>& cuts, BulkVector<Slot>& order) {
-        const std::size_t n = input.size();
-        const std::size_t column_count = cuts.groups(Dim - 1);
-        // Slots a removal renumbered, or that arrived, compare against another box's column or
-        // none: a few, and the share is a judgement of speed only.
-        const std::size_t compared = std::min(columns_.size(), n);
-        columns_.resize(n);
-        counts_.assign(column_count + 1, 0);
+    /// Before a detection that copies by column: the columns of a sample of `input` (one box in
+    /// tuning::column_copy_sample_stride), each compared with the column of the same slot at the last call (a slot that a
+    /// removal renumbered, or that arrived, compares against another box's column or none: a
+    /// few, and the share is a judgement of speed only). Stops the regrouped copy, from the next
+    /// detection on, once too few of them changed (tuning::column_copy_stop_changed).
+    void note_columns(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
+                      const CutTree<Real, Dim>& cuts) {
+        constexpr std::size_t stride = tuning::column_copy_sample_stride;
+        const std::size_t samples = (input.size() + stride - 1) / stride;
+        const std::size_t compared = std::min(columns_.size(), samples);
+        columns_.resize(samples);
         std::size_t changed = 0;
-        for (std::size_t slot = 0; slot < n; ++slot) {
-            const std::uint32_t column = column_of(input[slot], origin, cuts);
-            changed += slot < compared && columns_[slot] != column ? 1U : 0U;
-            columns_[slot] = column;
-            ++counts_[column + 1];
+        for (std::size_t i = 0; i < samples; ++i) {
+            const std::uint32_t column = cuts.column_of(held_as<Real>(input[i * stride], origin));
+            changed += i < compared && columns_[i] != column ? 1U : 0U;
+            columns_[i] = column;
         }
-        for (std::size_t c = 1; c <= column_count; ++c) counts_[c] += counts_[c - 1];
-        order.resize(n);
-        for (std::size_t slot = 0; slot < n; ++slot) order[counts_[columns_[slot]]++] = static_cast<Slot>(slot);
-        if (compared > 0 && static_cast<double>(changed) < kStopChanged * static_cast<double>(compared)) forget();
+        if (compared > 0 &&
+            static_cast<double>(changed) < tuning::column_copy_stop_changed * static_cast<double>(compared))
+            forget();
     }
 
-    [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return (columns_.capacity() + counts_.capacity()) * sizeof(std::uint32_t);
-    }
+    [[nodiscard]] std::size_t bytes_held() const noexcept { return columns_.capacity() * sizeof(std::uint32_t); }
 
 private:
-    // A hint that misses on a quarter of the entries is the locator's own sign that the order
-    // no longer follows the cells (group_locator.hpp). At 1M boxes in 3D the sort paid at
-    // Λ = 0.1 (98% of the boxes change column a step: 180 against 250-270 ms), broke even at
-    // Λ = 0.03 (76%) and lost a little at Λ = 0.01 (about 30%), where last step's order,
-    // x-sorted within each column, serves the check better.
-    static constexpr double kStartMisses = 0.25;
-    static constexpr double kStopChanged = 0.5;
-
-    /// The column (group of the deepest level's parent) holding the box's lower corner.
-    [[nodiscard]] static std::uint32_t column_of(const Box<Input, Dim>& box, const std::array<Input, Dim>& origin,
-                                                 const CutTree<Real, Dim>& cuts) noexcept {
-        return cuts.column_of(held_as<Real>(box, origin));
-    }
-
     bool sorting_ = false;
-    std::vector<std::uint32_t> columns_;  // per slot: its column at the last sort
-    std::vector<std::uint32_t> counts_;   // the counting sort's offsets, one per column
+    std::vector<std::uint32_t> columns_;  // per sampled slot: its column at the last regrouped copy
 };
 
 }  // namespace smb::detail

@@ -83,7 +83,7 @@ public:
     void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const DetectionSettings& settings,
                 Report& report, DetectProfile& profile);
 
-    /// Whether the next detection sorts the order by column before the copy (column_presort.hpp).
+    /// Whether the next detection copies the boxes grouped by column (column_presort.hpp).
     [[nodiscard]] bool presorting() const noexcept { return presort_.sorting(); }
 
     /// The order the last detection left: every slot once, cell by cell.
@@ -204,18 +204,23 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
 
     Stopwatch phase{settings.profile};
     const bool presorted = !cold && presort_.sorting();
+    auto copy_by_column = [&] {
+        cell_order_.copy_by_column(
+            input, ids, origin_, cuts_.groups(Dim - 1),
+            [this](const Box<Real, Dim>& box) { return cuts_.column_of(box); }, threads_);
+    };
     if (cold) {
         presort_.forget();
         // A temporary: its buffers are needed only now, and a pipeline holds nothing for it.
         SampledCuts<Real, Dim, Input>().cut(input, origin_, cuts_);
         profile.quantile_seconds += phase.lap();
-        cell_order_.copy_by_column(
-            input, ids, origin_, cuts_.groups(Dim - 1),
-            [this](const Box<Real, Dim>& box) { return cuts_.column_of(box); }, threads_);
+        copy_by_column();
         // The entries now come column by column: the hint is worth trying on every level.
         regrouping_.set_without_hint(false);
+    } else if (presorted) {
+        presort_.note_columns(input, origin_, cuts_);
+        copy_by_column();
     } else {
-        if (presorted) presort_.sort(input, origin_, cuts_, cell_order_.rewritable_order());
         cell_order_.copy(input, ids, origin_, threads_);
     }
     profile.copy_seconds += phase.seconds();
