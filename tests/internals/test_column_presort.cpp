@@ -58,7 +58,7 @@ TEST(ColumnPresort, StartsWhenHintsMissAndStopsWhenBoxesKeepTheirColumns) {
     std::vector<Box<float, 2>> boxes = scattered_boxes<2>(4000, 100.0F, random);
     const CutTree<float, 2> cuts = planes_for<2>(boxes, 16);
     ColumnPresort<float, 2, float> presort;
-    presort.judge(0.1);
+    presort.judge(0.02);  // below tuning::column_copy_start_misses
     EXPECT_FALSE(presort.sorting());
     presort.judge(0.6);
     EXPECT_TRUE(presort.sorting());
