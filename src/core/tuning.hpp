@@ -43,6 +43,11 @@ inline constexpr std::size_t sample_per_segment = 256;
 /// Below this many keys the recursive quantile selection beats the radix sort (128 keys: 2.9 µs
 /// against 0.94 µs; 64 keys: 0.08 against 0.71; bench/bench_quantiles.cpp).
 inline constexpr std::size_t quantile_radix_from = 128;
+/// A level above the columns whose planes, kept a box apart, leave open fewer than this share of
+/// its segments on average is a layer a few boxes thick (boxes on a floor): it keeps what it can
+/// open and the other level takes the rest (src/cuts/sampled_cuts.hpp). Three quarters: a
+/// level that loses a segment or two to a crowd of large boxes keeps its shape.
+inline constexpr double thin_level_open_share = 0.75;
 /// The boxes are copied grouped by column (src/cuts/column_presort.hpp) once the first level's
 /// hint misses on more than this share of its entries. At 1M boxes in 3D (`smb run --pipeline
 /// detector`) it missed on 2% at Λ = 0.01, 7% at 0.02, 14% at 0.03 and 62% at 0.1, and the copy

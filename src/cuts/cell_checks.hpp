@@ -206,7 +206,7 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
     const std::span<const Box<Real, Dim>> boxes = checked.boxes;
     const std::span<const Position> cells = checked.cells.entries;
     const std::span<const std::uint32_t> cell_begin = checked.cells.begin;
-    const std::uint32_t k = checked.cells.cuts->segments();
+    const std::uint32_t k = checked.cells.cuts->segments(Dim - 1);
     const bool own_ids = checked.order.own_ids();
     const std::span<const BoxId> ids = checked.order.ids();
     const std::span<const Slot> slots = checked.order.order();

@@ -45,9 +45,9 @@ struct Cells {
     /// The lower planes of `cell` on every axis.
     [[nodiscard]] CellFloor<Real, Dim> floor_of(std::size_t cell) const {
         CellFloor<Real, Dim> floor{};
-        const std::uint32_t k = cuts->segments();
         std::size_t group = cell;
         for (int level = Dim - 1; level >= 0; --level) {
+            const std::uint32_t k = cuts->segments(level);
             const auto segment = static_cast<std::uint32_t>(group % k);
             group /= k;
             floor[axis_of_level(level)] = cuts->lower(level, group, segment);
@@ -58,7 +58,6 @@ struct Cells {
     /// Calls visit(cell, floor) for every cell whose segments `box` touches on every level.
     template <class Visit>
     void for_each_covering(const Box<Real, Dim>& box, Visit&& visit) const {
-        const std::uint32_t k = cuts->segments();
         CellFloor<Real, Dim> floor{};
         auto descend = [&](auto& self, int level, std::size_t group) -> void {
             if (level == Dim) {
@@ -71,7 +70,7 @@ struct Cells {
             const std::uint32_t hi = segment_of(planes, box.max[axis]);
             for (std::uint32_t s = lo; s <= hi; ++s) {
                 floor[axis] = cuts->lower(level, group, s);
-                self(self, level + 1, group * k + s);
+                self(self, level + 1, group * cuts->segments(level) + s);
             }
         };
         descend(descend, 0, 0);

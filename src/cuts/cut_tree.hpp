@@ -101,34 +101,58 @@ public:
     /// The axis level `level` cuts along.
     static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
 
-    [[nodiscard]] std::uint32_t segments() const noexcept { return k_; }
+    /// Segments per group of `level` (0 before the first reshape()).
+    [[nodiscard]] std::uint32_t segments(int level) const noexcept { return k_[level]; }
     [[nodiscard]] std::size_t groups(int level) const noexcept { return groups_[level]; }
     [[nodiscard]] std::size_t cells() const noexcept { return groups_[Dim]; }
 
-    /// Sets the number of segments per group; every group forgets its cuts when it changes.
-    void reshape(std::uint32_t segments) {
-        segments = std::clamp<std::uint32_t>(segments, 1, kMaxSegments);
-        if (segments == k_) return;
-        k_ = segments;
+    /// Sets the number of segments per group of every level; every group forgets its cuts when
+    /// the shape changes.
+    void reshape(std::array<std::uint32_t, Dim> shape) {
+        for (std::uint32_t& segments : shape) segments = std::clamp<std::uint32_t>(segments, 1, kMaxSegments);
+        if (shape == k_) return;
+        k_ = shape;
         std::size_t groups = 1;
         for (int level = 0; level <= Dim; ++level) {
             groups_[level] = groups;
             if (level < Dim) {
-                cuts_[level].assign(groups * (k_ + 1), Real{0});
+                const std::uint32_t k = k_[level];
+                cuts_[level].assign(groups * (k + 1), Real{0});
                 // Two NaN past each group's planes: segment_of_max() reads them, and no
                 // comparison with NaN holds.
                 for (std::size_t g = 0; g < groups; ++g) {
-                    cuts_[level][g * (k_ + 1) + k_ - 1] = std::numeric_limits<Real>::quiet_NaN();
-                    cuts_[level][g * (k_ + 1) + k_] = std::numeric_limits<Real>::quiet_NaN();
+                    cuts_[level][g * (k + 1) + k - 1] = std::numeric_limits<Real>::quiet_NaN();
+                    cuts_[level][g * (k + 1) + k] = std::numeric_limits<Real>::quiet_NaN();
                 }
                 limit_[level].assign(groups, 0);  // 0: never cut
-                groups *= k_;
+                groups *= k;
             }
         }
     }
+    /// The same number of segments on every level.
+    void reshape(std::uint32_t segments) {
+        std::array<std::uint32_t, Dim> shape{};
+        shape.fill(segments);
+        reshape(shape);
+    }
+
+    /// The mean number of segments per group of `level` that its planes leave open (the planes
+    /// dropped by cut_group() for lying closer than the boxes are thick end as +inf, and leave
+    /// the segments past them empty).
+    [[nodiscard]] double open_segments(int level) const noexcept {
+        const std::uint32_t k = k_[level];
+        std::size_t open = 0;
+        for (std::size_t g = 0; g < groups_[level]; ++g) {
+            const std::span<const Real> planes = cuts(level, g);
+            open += 1 + static_cast<std::size_t>(std::count_if(planes.begin(), planes.end(), [](Real plane) {
+                        return plane < std::numeric_limits<Real>::infinity();
+                    }));
+        }
+        return groups_[level] == 0 || k == 0 ? 0.0 : static_cast<double>(open) / static_cast<double>(groups_[level]);
+    }
 
     void forget() {
-        k_ = 0;
+        k_ = {};
         for (int level = 0; level < Dim; ++level) {
             cuts_[level] = {};
             limit_[level] = {};
@@ -138,7 +162,7 @@ public:
 
     /// The k - 1 planes of a group, in order, followed in memory by two NaN (segment_of_max()).
     [[nodiscard]] std::span<const Real> cuts(int level, std::size_t group) const noexcept {
-        return {cuts_[level].data() + group * (k_ + 1), k_ - 1};
+        return {cuts_[level].data() + group * (k_[level] + 1), k_[level] - 1};
     }
 
     /// True when group `group` of `level` must be cut (again) before its boxes are bucketed:
@@ -156,13 +180,14 @@ public:
     /// before them are dropped, and the dropped ones become +inf planes at the end (empty last
     /// segments): see cut_group(). The caller then sets the group's band with set_band().
     void cut(int level, std::size_t group, QuantileSelector<Real>& selector, Real min_gap = Real{0}) {
-        Real* out = cuts_[level].data() + group * (k_ + 1);
-        if (k_ > 1) {
+        const std::uint32_t k = k_[level];
+        Real* out = cuts_[level].data() + group * (k + 1);
+        if (k > 1) {
             if (selector.keys.empty()) {
-                std::fill(out, out + (k_ - 1), Real{0});
+                std::fill(out, out + (k - 1), Real{0});
             } else {
-                selector.select(k_, out);
-                if (min_gap > Real{0}) space_planes(out, k_ - 1, min_gap);
+                selector.select(k, out);
+                if (min_gap > Real{0}) space_planes(out, k - 1, min_gap);
             }
         }
     }
@@ -184,7 +209,7 @@ public:
     template <class KeyAt, class ExtentAt>
     void cut_group(int level, std::size_t group, std::size_t n, KeyAt&& key_at, ExtentAt&& extent_at,
                    QuantileSelector<Real>& selector) {
-        const std::size_t sample = kSamplePerSegment * k_;
+        const std::size_t sample = kSamplePerSegment * k_[level];
         const std::size_t take = n > 2 * sample ? sample : n;
         std::vector<Real>& keys = selector.keys;
         keys.clear();
@@ -224,7 +249,7 @@ public:
     /// cut, not on the even share, keeps a group that cannot be balanced (a run of equal
     /// coordinates) from being cut again every step.
     void set_band(int level, std::size_t group, std::size_t registrations, std::uint32_t fullest) {
-        const double even = static_cast<double>(registrations) / k_;
+        const double even = static_cast<double>(registrations) / k_[level];
         const double band = std::max(2.0 * even, 1.5 * static_cast<double>(fullest)) + 8.0;
         limit_[level][group] = static_cast<std::uint32_t>(std::min(band, 4.0e9));
     }
@@ -232,8 +257,9 @@ public:
     /// Leaves group `group` of `level` whole: every plane +inf, so that its first segment holds
     /// every box and the others stay empty, and the group is never cut again.
     void leave_whole(int level, std::size_t group) {
-        Real* out = cuts_[level].data() + group * (k_ + 1);
-        if (k_ > 1) std::fill(out, out + (k_ - 1), std::numeric_limits<Real>::infinity());
+        const std::uint32_t k = k_[level];
+        Real* out = cuts_[level].data() + group * (k + 1);
+        if (k > 1) std::fill(out, out + (k - 1), std::numeric_limits<Real>::infinity());
         limit_[level][group] = std::numeric_limits<std::uint32_t>::max();
     }
 
@@ -242,13 +268,14 @@ public:
     [[nodiscard]] std::uint32_t column_of(const Box<Real, Dim>& box) const noexcept {
         std::size_t group = 0;
         for (int level = 0; level + 1 < Dim; ++level)
-            group = group * k_ + segment_of(cuts(level, group), box.min[axis_of_level(level)]);
+            group = group * k_[level] + segment_of(cuts(level, group), box.min[axis_of_level(level)]);
         return static_cast<std::uint32_t>(group);
     }
 
     /// Lower plane of segment `segment` of group `group` (-inf for the first).
     [[nodiscard]] Real lower(int level, std::size_t group, std::uint32_t segment) const noexcept {
-        return segment == 0 ? -std::numeric_limits<Real>::infinity() : cuts_[level][group * (k_ + 1) + segment - 1];
+        return segment == 0 ? -std::numeric_limits<Real>::infinity()
+                            : cuts_[level][group * (k_[level] + 1) + segment - 1];
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
@@ -272,7 +299,7 @@ private:
         std::fill(planes + kept, planes + count, std::numeric_limits<Real>::infinity());
     }
 
-    std::uint32_t k_ = 0;
+    std::array<std::uint32_t, Dim> k_{};  // segments per group of each level
     std::array<std::size_t, Dim + 1> groups_{};
     std::array<std::vector<Real>, Dim> cuts_;
     std::array<std::vector<std::uint32_t>, Dim> limit_;  // band of each group; 0 = not cut yet

@@ -116,7 +116,7 @@ std::uint32_t GroupLocator<Real, Dim>::locate(int level, std::size_t group, cons
                                               [[maybe_unused]] std::uint8_t* oversized) const {
     const int axis = CutTree<Real, Dim>::axis_of_level(level);
     const std::span<const Real> planes = cuts.cuts(level, group);
-    const std::uint32_t k = cuts.segments();
+    const std::uint32_t k = cuts.segments(level);
     std::fill(count, count + k, 0U);
     std::size_t misses = 0;
     // One loop per way of locating the min, so that the hinted one is as tight as without the choice.

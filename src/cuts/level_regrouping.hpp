@@ -49,7 +49,7 @@ public:
         timed_ = timed;
         Stopwatch phase{timed};
         double cutting = regroup_first_level(n, cuts, boxes, lists_[0], begin_[0]);
-        locator_.judge_hints(0, cuts.segments(), workers_);
+        locator_.judge_hints(0, cuts.segments(0), workers_);
         profile.level_seconds[0] += phase.lap();
         cells_list_ = 0;
         for (int level = 1; level < Dim; ++level) {
@@ -63,7 +63,7 @@ public:
             }
             cutting +=
                 regroup_level(level, cuts, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
-            locator_.judge_hints(level, cuts.segments(), workers_);
+            locator_.judge_hints(level, cuts.segments(level), workers_);
             cells_list_ = target;
             profile.level_seconds[static_cast<std::size_t>(level)] += phase.lap();
         }
@@ -150,7 +150,7 @@ void LevelRegrouping<Real, Dim>::keep_columns_whole(CutTree<Real, Dim>& cuts, Bu
                                                     std::span<const std::uint32_t> in_begin, BulkVector<Position>& out,
                                                     std::vector<std::uint32_t>& out_begin) {
     const std::size_t groups = cuts.groups(Dim - 1);
-    const std::uint32_t k = cuts.segments();
+    const std::uint32_t k = cuts.segments(Dim - 1);
     SMB_ASSERT(in_begin.size() == groups + 1, "one offset per group");
     out_begin.resize(groups * k + 1);
     for (std::size_t g = 0; g < groups; ++g) {
@@ -183,7 +183,7 @@ template <std::floating_point Real, int Dim>
 double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Real, Dim>& cuts,
                                                        std::span<const Box<Real, Dim>> boxes, BulkVector<Position>& out,
                                                        std::vector<std::uint32_t>& out_begin) {
-    const std::uint32_t k = cuts.segments();
+    const std::uint32_t k = cuts.segments(0);
     const auto shares = static_cast<std::size_t>(threads_);
     resize_with_slack(ranges_, n);
     auto share_begin = [&](std::size_t t) { return n * t / shares; };
@@ -264,7 +264,7 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
                                                  std::span<const Box<Real, Dim>> boxes, BulkVector<Position>& out,
                                                  std::vector<std::uint32_t>& out_begin) {
     const std::size_t groups = cuts.groups(level);
-    const std::uint32_t k = cuts.segments();
+    const std::uint32_t k = cuts.segments(level);
     const int axis = axis_of_level(level);
     SMB_ASSERT(in_begin.size() == groups + 1, "one offset per group");
     resize_with_slack(ranges_, in.size());

@@ -93,6 +93,7 @@ public:
     void set_origin(const std::array<Input, Dim>& origin) {
         origin_ = origin;
         cuts_.forget();
+        planned_segments_ = 0;
         presort_.forget();
         order_state_ = OrderState::fresh;
     }
@@ -110,7 +111,7 @@ public:
     template <class Visit>
     void for_each_held_overlapping(const Box<Real, Dim>& query, Visit&& visit) const {
         const std::span<const Box<Real, Dim>> boxes = cell_order_.boxes();
-        if (cuts_.segments() == 0 || boxes.empty()) return;
+        if (cuts_.cells() == 0 || boxes.empty()) return;
         const std::span<const Slot> slot_at = cell_order_.copied_from();
         regrouping_.cells(cuts_).for_each_box_overlapping(query, boxes,
                                                           [&](Position position) { visit(slot_at[position]); });
@@ -155,6 +156,7 @@ private:
     int threads_ = 1;
     CellOrder<Real, Dim, Input> cell_order_;
     CutTree<Real, Dim> cuts_;
+    std::uint32_t planned_segments_ = 0;  // segments per group before a layer reshapes the cuts
     LevelRegrouping<Real, Dim> regrouping_;
     CellChecks<Real, Dim> checks_;
     ColumnPresort<Real, Dim, Input> presort_;
@@ -166,14 +168,16 @@ private:
 
 /// About (N / target population)^(1/Dim) segments per group, so that cells hold about the target
 /// number of boxes; changed only when N has moved by more than a quarter, since a new count
-/// forgets every plane.
+/// forgets every plane. A layer a few boxes thick then moves segments from its level to the
+/// other (sampled_cuts.hpp).
 template <std::floating_point Real, int Dim, std::floating_point Input>
 void PersistentCutPipeline<Real, Dim, Input>::plan_segments(std::size_t n, const DetectionSettings& settings) {
     const double cells = static_cast<double>(n) / static_cast<double>(settings.target_cell_population);
     const double ideal = std::clamp(std::pow(cells, 1.0 / Dim), 1.0, double{CutTree<Real, Dim>::kMaxSegments});
-    const double current = cuts_.segments();
+    const double current = planned_segments_;
     if (current == 0 || ideal > 1.25 * current || ideal < 0.8 * current) {
-        cuts_.reshape(static_cast<std::uint32_t>(std::lround(ideal)));
+        planned_segments_ = static_cast<std::uint32_t>(std::lround(ideal));
+        cuts_.reshape(planned_segments_);
     }
 }
 
@@ -188,10 +192,11 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     cell_order_.list_arrivals(n);
     if (n == 0) {
         cuts_.forget();
+        planned_segments_ = 0;
         presort_.forget();
         return;
     }
-    const std::uint32_t segments_before = cuts_.segments();
+    const std::uint32_t segments_before = planned_segments_;
     plan_segments(n, settings);
     threads_ = thread_count(settings);
     // A cold order (first detection, new cut counts, new origin) follows no cell, and the cuts
@@ -200,7 +205,7 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     // 3D, twice the time of a later detection). So the levels above the columns are cut from a
     // sample of the input first (sampled_cuts.hpp), and the boxes are copied grouped by column
     // by a counting sort, each column in one run, as a later detection has it.
-    const bool cold = order_state_ == OrderState::fresh || cuts_.segments() != segments_before;
+    const bool cold = order_state_ == OrderState::fresh || planned_segments_ != segments_before;
 
     Stopwatch phase{settings.profile};
     const bool presorted = !cold && presort_.sorting();

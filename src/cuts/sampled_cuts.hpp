@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "core/held_box.hpp"
+#include "core/tuning.hpp"
 #include "cuts/cut_tree.hpp"
 #include "cuts/quantile_select.hpp"
 #include "smb/box.hpp"
@@ -40,10 +42,51 @@ public:
     /// planes) from a sample of `input`, held from `origin` where Real rounds Input, and sets
     /// their bands. The deepest level is left to the levels (cut there, or kept whole as columns).
     void cut(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin, CutTree<Real, Dim>& cuts) {
+        if (input.empty() || cuts.cells() == 0) return;
+        cut_levels(input, origin, cuts);
+        if constexpr (Dim == 3) {
+            const std::array<std::uint32_t, Dim> shape = reshaped(cuts);
+            if (shape[0] != cuts.segments(0) || shape[1] != cuts.segments(1)) {
+                cuts.reshape(shape);
+                cut_levels(input, origin, cuts);
+            }
+        }
+    }
+
+    /// The shape the cuts should take where one of the two levels above the columns is a layer
+    /// only a few boxes thick (boxes on a floor): its planes, kept at least a box apart
+    /// (CutTree::cut_group), leave it fewer open segments than it has, and every column holds
+    /// as many times the target population. That level keeps the segments it can open and the
+    /// other gets the rest, so that the columns number as many as before. `cuts`' own shape
+    /// where both levels open most of their segments, or neither does.
+    [[nodiscard]] static std::array<std::uint32_t, Dim> reshaped(const CutTree<Real, Dim>& cuts) {
+        std::array<std::uint32_t, Dim> shape{};
+        for (int level = 0; level < Dim; ++level) shape[level] = cuts.segments(level);
+        std::array<bool, 2> thin{};
+        for (int level = 0; level < 2; ++level)
+            thin[level] = cuts.open_segments(level) < tuning::thin_level_open_share * shape[level];
+        if (thin[0] == thin[1]) return shape;
+        const int layer = thin[0] ? 0 : 1;
+        const auto open = static_cast<std::uint32_t>(std::max(1.0, std::round(cuts.open_segments(layer))));
+        const double columns = static_cast<double>(shape[0]) * static_cast<double>(shape[1]);
+        shape[1 - layer] = static_cast<std::uint32_t>(
+            std::min(std::round(columns / open), static_cast<double>(CutTree<Real, Dim>::kMaxSegments)));
+        shape[layer] = open;
+        return shape;
+    }
+
+private:
+    using Interval = std::array<Real, 2>;      // min and max on one axis
+    static constexpr std::uint32_t kNone = 1;  // first segment 1, last 0: registered nowhere
+
+    static constexpr int axis_of_level(int level) noexcept { return CutTree<Real, Dim>::axis_of_level(level); }
+
+    /// Cuts every group of the levels above the columns from a sample of `input`.
+    void cut_levels(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
+                    CutTree<Real, Dim>& cuts) {
         const std::size_t n = input.size();
-        const std::uint32_t k = cuts.segments();
-        if (n == 0 || k == 0) return;
-        const std::size_t size = sample_size(n, k);
+        const std::uint32_t k = cuts.segments(0);
+        const std::size_t size = sample_size(n, cuts);
         const double scale = static_cast<double>(n) / static_cast<double>(size);
         // Level 0: one group of every sampled box, each held as its interval on the level's axis
         // only (the cut and the band need no more), a quarter of the box at 1M boxes in 3D.
@@ -75,17 +118,11 @@ public:
         }
     }
 
-private:
-    using Interval = std::array<Real, 2>;      // min and max on one axis
-    static constexpr std::uint32_t kNone = 1;  // first segment 1, last 0: registered nowhere
-
-    static constexpr int axis_of_level(int level) noexcept { return CutTree<Real, Dim>::axis_of_level(level); }
-
     /// As many boxes as the levels' own sampled cuts read keys (kSamplePerSegment per segment
     /// in every group of the level above the columns), or all of them where that is most.
-    [[nodiscard]] static std::size_t sample_size(std::size_t n, std::uint32_t k) {
+    [[nodiscard]] static std::size_t sample_size(std::size_t n, const CutTree<Real, Dim>& cuts) {
         std::size_t size = CutTree<Real, Dim>::kSamplePerSegment;
-        for (int level = 0; level + 1 < Dim; ++level) size *= k;
+        for (int level = 0; level + 1 < Dim; ++level) size *= cuts.segments(level);
         return size * 2 >= n ? n : size;
     }
 
@@ -111,7 +148,7 @@ private:
     /// which ranges_ and counts_ (per segment, shifted by one) keep for the next level.
     void cut_groups(int level, CutTree<Real, Dim>& cuts, double scale) {
         const std::size_t groups = cuts.groups(level);
-        const std::uint32_t k = cuts.segments();
+        const std::uint32_t k = cuts.segments(level);
         ranges_.resize(intervals_.size());
         counts_.assign(groups * k + 1, 0U);
         for (std::size_t g = 0; g < groups; ++g) {

@@ -18,7 +18,7 @@ namespace smb::detail {
 namespace {
 
 std::vector<std::size_t> segment_counts(const CutTree<double, 2>& tree, const std::vector<double>& keys) {
-    std::vector<std::size_t> counts(tree.segments(), 0);
+    std::vector<std::size_t> counts(tree.segments(0), 0);
     for (const double key : keys) ++counts[segment_of(tree.cuts(0, 0), key)];
     return counts;
 }

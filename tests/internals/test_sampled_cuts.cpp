@@ -4,7 +4,8 @@
 // set; the boxes copied once each, grouped by column, in slot order within a column, on one
 // thread or several; and first detections (and those after a change of the number of segments,
 // which start again without planes) exact against brute force on lattices of equal coordinates,
-// touching boxes, points and boxes across many segments, float and double, 2D and 3D.
+// touching boxes, points and boxes across many segments, float and double, 2D and 3D; and a
+// layer a few boxes thick, whose level gives the segments it cannot open to the other level.
 
 #include <gtest/gtest.h>
 
@@ -100,6 +101,73 @@ TEST(SampledCuts, CopyByColumnCopiesEverySlotOnceGroupedByColumn) {
             ASSERT_LE(before, here) << "at " << i;
             if (before == here) {
                 ASSERT_LT(slots[i - 1], slots[i]) << "at " << i;
+            }
+        }
+    }
+}
+
+/// Boxes of sides 0.4 to 1 in a layer `thickness` deep on axis `thin` and 100 wide on the others.
+std::vector<Box<float, 3>> layer_boxes(std::size_t n, int thin, float thickness, std::mt19937_64& random) {
+    std::uniform_real_distribution<float> unit(0.0F, 1.0F);
+    std::vector<Box<float, 3>> boxes(n);
+    for (Box<float, 3>& box : boxes) {
+        for (int k = 0; k < 3; ++k) {
+            box.min[k] = unit(random) * (k == thin ? thickness : 100.0F);
+            box.max[k] = box.min[k] + 0.4F + 0.6F * unit(random);
+        }
+    }
+    return boxes;
+}
+
+/// A layer a few boxes thick on the axis of level `layer` keeps the segments it can open there,
+/// and the other level above the columns takes the rest, as many columns as before.
+void check_layer_shape(int layer) {
+    std::mt19937_64 random(51 + layer);
+    const std::vector<Box<float, 3>> boxes = layer_boxes(20000, 2 - layer, 2.0F, random);
+    CutTree<float, 3> cuts;
+    cuts.reshape(12);
+    SampledCuts<float, 3, float>().cut(boxes, {}, cuts);
+    EXPECT_LE(cuts.segments(layer), 4U);
+    EXPECT_GE(cuts.segments(layer), 1U);
+    const double columns = static_cast<double>(cuts.segments(0)) * cuts.segments(1);
+    EXPECT_NEAR(columns, 144.0, 0.5 * cuts.segments(layer));
+    EXPECT_EQ(cuts.segments(2), 12U);
+    for (int level = 0; level < 2; ++level) {
+        for (std::size_t group = 0; group < cuts.groups(level); ++group) EXPECT_TRUE(cuts.was_cut(level, group));
+    }
+    // Boxes that fill the cube keep the shape they were given.
+    CutTree<float, 3> cube;
+    cube.reshape(12);
+    SampledCuts<float, 3, float>().cut(layer_boxes(20000, 2 - layer, 100.0F, random), {}, cube);
+    for (int level = 0; level < 3; ++level) EXPECT_EQ(cube.segments(level), 12U);
+}
+
+TEST(SampledCuts, ALayerOnTheFirstLevelGivesItsSegmentsToTheSecond) { check_layer_shape(0); }
+TEST(SampledCuts, ALayerOnTheSecondLevelGivesItsSegmentsToTheFirst) { check_layer_shape(1); }
+
+/// Layers on each axis, moving and growing by new boxes (a new number of segments, and the
+/// shape judged again), against brute force at every step.
+TEST(SampledCuts, DetectionsOfLayersAreExact) {
+    std::mt19937_64 random(53);
+    std::uniform_real_distribution<float> nudge(-0.05F, 0.05F);
+    for (const int thin : {0, 1, 2}) {
+        SCOPED_TRACE(testing::Message() << "thin axis " << thin);
+        std::vector<Box<float, 3>> boxes = layer_boxes(6000, thin, 1.5F, random);
+        PersistentCutPipeline<float, 3> pipeline;
+        for (int step = 0; step < 6; ++step) {
+            SCOPED_TRACE(step);
+            if (step == 3) {
+                const std::vector<Box<float, 3>> more = layer_boxes(3000, thin, 1.5F, random);
+                boxes.insert(boxes.end(), more.begin(), more.end());
+            }
+            const std::vector<Pair> expected = test::brute_force_pairs<float, 3>(boxes);
+            ASSERT_EQ(detected(pipeline, std::span<const Box<float, 3>>(boxes)), expected);
+            for (Box<float, 3>& box : boxes) {
+                for (int k = 0; k < 3; ++k) {
+                    const float d = nudge(random);
+                    box.min[k] += d;
+                    box.max[k] += d;
+                }
             }
         }
     }
