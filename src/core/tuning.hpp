@@ -50,10 +50,11 @@ inline constexpr std::size_t quantile_radix_from = 128;
 inline constexpr double thin_level_open_share = 0.75;
 /// The boxes are copied grouped by column (src/cuts/column_presort.hpp) once the first level's
 /// hint misses on more than this share of its entries. At 1M boxes in 3D (`smb run --pipeline
-/// detector`) it missed on 2% at Λ = 0.01, 7% at 0.02, 14% at 0.03 and 62% at 0.1, and the copy
-/// by column took a step from 100-105 to 94-97 ms at 0.02, 106-109 to 92-96 at 0.03 and 107-112
-/// to 99-103 at 0.1 (the copy 8-10 ms dearer than the gather in last step's order, the levels
-/// 13-14 ms cheaper); below about 5% last step's order, x-sorted in each column, serves better.
+/// detector`) it missed on 2% at Λ = 0.01, 7% at 0.02, 14% at 0.03 and 62% at 0.1, and with the
+/// copy by column a step took 94-97 ms against 100-105 with the gather in last step's order at
+/// 0.02, 92-96 against 106-109 at 0.03 and 99-103 against 107-112 at 0.1 (the copy 8-10 ms dearer,
+/// the levels 13-14 ms cheaper); below about 5% last step's order, x-sorted in each column, serves
+/// better.
 inline constexpr double column_copy_start_misses = 0.05;
 /// It stops once fewer than this share of the sampled boxes changed column since the last such
 /// copy: a kept order then reads most columns in one run.
