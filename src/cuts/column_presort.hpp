@@ -12,8 +12,9 @@
 // once to its column's run, where a gather in last step's order would read every box from a
 // different place. Where boxes keep their cells, last step's order is already that (and x-sorted
 // within each column), so the regrouped copy is left out: it starts when the first level's hints
-// miss on a quarter of the boxes, and stops when fewer than half of a sample of the boxes changed
-// column since the last one. Only speed depends on it: the order is any order of the slots.
+// miss on more than tuning::column_copy_start_misses of the boxes, and stops when fewer than
+// tuning::column_copy_stop_changed of a sample of them changed column since the last one. Only
+// speed depends on it: the order is any order of the slots.
 
 #include <algorithm>
 #include <array>
@@ -49,10 +50,11 @@ public:
     }
 
     /// Before a detection that copies by column: the columns of a sample of `input` (one box in
-    /// tuning::column_copy_sample_stride), each compared with the column of the same slot at the last call (a slot that a
-    /// removal renumbered, or that arrived, compares against another box's column or none: a
-    /// few, and the share is a judgement of speed only). Stops the regrouped copy, from the next
-    /// detection on, once too few of them changed (tuning::column_copy_stop_changed).
+    /// tuning::column_copy_sample_stride), each compared with the column of the same slot at the
+    /// last call (a slot that a removal renumbered, or that arrived, compares against another
+    /// box's column or none: a few, and the share is a judgement of speed only). Stops the
+    /// regrouped copy, from the next detection on, once too few of them changed
+    /// (tuning::column_copy_stop_changed).
     void note_columns(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
                       const CutTree<Real, Dim>& cuts) {
         constexpr std::size_t stride = tuning::column_copy_sample_stride;

@@ -62,16 +62,16 @@ public:
     [[nodiscard]] static std::array<std::uint32_t, Dim> reshaped(const CutTree<Real, Dim>& cuts) {
         std::array<std::uint32_t, Dim> shape{};
         for (int level = 0; level < Dim; ++level) shape[level] = cuts.segments(level);
-        std::array<bool, 2> thin{};
-        for (int level = 0; level < 2; ++level)
-            thin[level] = cuts.open_segments(level) < tuning::thin_level_open_share * shape[level];
-        if (thin[0] == thin[1]) return shape;
-        const int layer = thin[0] ? 0 : 1;
-        const auto open = static_cast<std::uint32_t>(std::max(1.0, std::round(cuts.open_segments(layer))));
+        const std::array<double, 2> open{cuts.open_segments(0), cuts.open_segments(1)};
+        const bool thin_first = open[0] < tuning::thin_level_open_share * shape[0];
+        const bool thin_second = open[1] < tuning::thin_level_open_share * shape[1];
+        if (thin_first == thin_second) return shape;
+        const int layer = thin_first ? 0 : 1;
+        const auto kept = static_cast<std::uint32_t>(std::max(1.0, std::round(open[layer])));
         const double columns = static_cast<double>(shape[0]) * static_cast<double>(shape[1]);
         shape[1 - layer] = static_cast<std::uint32_t>(
-            std::min(std::round(columns / open), static_cast<double>(CutTree<Real, Dim>::kMaxSegments)));
-        shape[layer] = open;
+            std::min(std::round(columns / kept), static_cast<double>(CutTree<Real, Dim>::kMaxSegments)));
+        shape[layer] = kept;
         return shape;
     }
 
