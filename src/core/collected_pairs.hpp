@@ -9,31 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "core/pair_output.hpp"
 #include "smb/errors.hpp"
 #include "smb/pair.hpp"
 #include "smb/stats.hpp"
 
 namespace smb::detail {
-
-/// The sink that appends every chunk to `pairs` after the `kept` pairs it held before, and
-/// throws PairLimitError past `limit` new pairs, naming `limit_name` (the settings field) and
-/// `streaming_call` (the way to take any number of pairs). Handed over as std::cref(appender),
-/// so that the PairSink holds a reference and allocates nothing on a detection.
-struct PairAppender {
-    std::vector<Pair>& pairs;
-    std::size_t kept;
-    std::size_t limit;
-    const char* limit_name;
-    const char* streaming_call;
-
-    void operator()(std::span<const Pair> chunk) const {
-        if (chunk.size() > limit - (pairs.size() - kept)) {
-            throw PairLimitError("detect: more than " + std::to_string(limit) + " overlapping pairs (" + limit_name +
-                                 "); use " + streaming_call + " to consume them in chunks");
-        }
-        pairs.insert(pairs.end(), chunk.begin(), chunk.end());
-    }
-};
 
 /// Runs `fill` (a callable that appends to `items` and returns a result), then leaves in
 /// `items` exactly what it appended. The old contents stay in front until it succeeded, so that

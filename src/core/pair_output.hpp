@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <functional>
+#include <string>
 #include <span>
 #include <vector>
 
@@ -19,59 +21,145 @@ namespace smb::detail {
     return Pair{a ^ swap, b ^ swap};
 }
 
+/// The sink of detect(..., std::vector<Pair>&): appends every chunk to `pairs` after the `kept`
+/// pairs it held before, and throws PairLimitError past `limit` new pairs, naming `limit_name`
+/// (the settings field) and `streaming_call` (the way to take any number of pairs). Handed over as
+/// std::cref(appender), so that the PairSink holds a reference and allocates nothing; PairOutput
+/// recognises it there and writes the pairs straight into `pairs`.
+struct PairAppender {
+    std::vector<Pair>& pairs;
+    std::size_t kept;
+    std::size_t limit;
+    const char* limit_name;
+    const char* streaming_call;
+
+    /// Throws PairLimitError if `adding` more pairs would pass the limit.
+    void check_room(std::size_t adding) const {
+        const std::size_t added = pairs.size() - kept;
+        if (added > limit || adding > limit - added) {
+            throw PairLimitError("detect: more than " + std::to_string(limit) + " overlapping pairs (" + limit_name +
+                                 "); use " + streaming_call + " to consume them in chunks");
+        }
+    }
+
+    void operator()(std::span<const Pair> chunk) const {
+        check_room(chunk.size());
+        pairs.insert(pairs.end(), chunk.begin(), chunk.end());
+    }
+};
+
 /// Hands pairs to the caller's sink in chunks of the settings' size: one pair at a time (the
 /// paper's pipeline) or a run of pairs already in (a < b) order (the persistent pipeline, whose
-/// runs go to the sink without another copy where they fill whole chunks).
+/// runs go to the sink without another copy where they fill whole chunks). Where the sink is a
+/// PairAppender (detect() into a vector), the pairs are written into the caller's vector itself,
+/// a room of kDirectRoom pairs at a time: each pair is written once, not into a chunk and then
+/// copied.
 class PairOutput {
 public:
     /// `chunk` is the caller's buffer, kept between detections so that none allocates it again.
-    /// It is held at the chunk's full size, and filled_ counts the pairs in it: a pair is then
-    /// one store, where push_back tests the capacity and calls out of line.
+    /// It is held at the chunk's full size, and the pairs are written by a cursor into it: a pair
+    /// is then one store, where push_back tests the capacity and calls out of line.
     PairOutput(std::vector<Pair>& chunk, std::size_t chunk_size, const PairSink& sink, std::size_t& count)
         : chunk_(chunk), chunk_size_(chunk_size), sink_(sink), count_(count) {
+        if (const auto* appender = sink.target<std::reference_wrapper<const PairAppender>>()) {
+            direct_ = &appender->get();
+            counted_ = direct_->pairs.size();
+            make_room();
+            return;
+        }
         chunk_.resize(chunk_size_);
+        next_ = chunk_.data();
+        end_ = next_ + chunk_size_;
     }
 
-    // Inlined into the cell check's report loop (GCC would leave it a call there); sending a
-    // full chunk stays out of line.
+    // Inlined into the cell check's report loop (GCC would leave it a call there); a full room
+    // stays out of line.
     [[gnu::always_inline]] inline void operator()(BoxId a, BoxId b) {
-        chunk_[filled_++] = ordered_pair(a, b);
-        if (filled_ == chunk_size_) send_chunk();
+        *next_++ = ordered_pair(a, b);
+        if (next_ == end_) full();
     }
 
     void append(std::span<const Pair> ordered) {
+        if (direct_ != nullptr) {
+            // Inserted after the pairs written, not copied over zeroed room: one write of each.
+            close_direct();
+            direct_->check_room(ordered.size());
+            direct_->pairs.insert(direct_->pairs.end(), ordered.begin(), ordered.end());
+            next_ = nullptr;
+            make_room();
+            return;
+        }
         while (!ordered.empty()) {
-            if (filled_ == 0 && ordered.size() >= chunk_size_) {
+            const auto filled = static_cast<std::size_t>(next_ - chunk_.data());
+            if (filled == 0 && ordered.size() >= chunk_size_) {
                 count_ += chunk_size_;
                 sink_(ordered.first(chunk_size_));
                 ordered = ordered.subspan(chunk_size_);
                 continue;
             }
-            const std::size_t take = std::min(ordered.size(), chunk_size_ - filled_);
-            std::copy_n(ordered.begin(), take, chunk_.begin() + static_cast<std::ptrdiff_t>(filled_));
-            filled_ += take;
+            const std::size_t take = std::min(ordered.size(), chunk_size_ - filled);
+            next_ = std::copy_n(ordered.begin(), take, next_);
             ordered = ordered.subspan(take);
-            if (filled_ == chunk_size_) send_chunk();
+            if (next_ == end_) full();
         }
     }
 
+    /// Hands on the pairs still held; a vector written directly is trimmed to its pairs.
     void flush() {
-        if (filled_ != 0) send_chunk();
+        if (direct_ != nullptr) {
+            close_direct();
+            return;
+        }
+        if (next_ != chunk_.data()) send_chunk();
     }
 
 private:
-    [[gnu::noinline]] void send_chunk() {
-        count_ += filled_;
-        const std::size_t filled = filled_;
-        filled_ = 0;  // first: a sink that throws leaves an empty chunk behind
+    /// Pairs of room the caller's vector grows by at a time: zeroed by resize() and written over
+    /// while still in the cache.
+    static constexpr std::size_t kDirectRoom = 4096;
+
+    [[gnu::noinline]] void full() {
+        if (direct_ != nullptr)
+            make_room();
+        else
+            send_chunk();
+    }
+
+    void send_chunk() {
+        const auto filled = static_cast<std::size_t>(next_ - chunk_.data());
+        count_ += filled;
+        next_ = chunk_.data();  // first: a sink that throws leaves an empty chunk behind
         sink_(std::span<const Pair>(chunk_.data(), filled));
+    }
+
+    /// The caller's vector trimmed to the pairs written, the limit checked and the count kept.
+    void close_direct() {
+        std::vector<Pair>& pairs = direct_->pairs;
+        const auto used = static_cast<std::size_t>(next_ - pairs.data());
+        pairs.resize(used);
+        count_ += used - counted_;
+        counted_ = used;
+        direct_->check_room(0);
+    }
+
+    /// Room for kDirectRoom more pairs after the pairs written.
+    void make_room() {
+        std::vector<Pair>& pairs = direct_->pairs;
+        if (next_ != nullptr) close_direct();
+        const std::size_t used = pairs.size();
+        pairs.resize(used + kDirectRoom);
+        next_ = pairs.data() + used;
+        end_ = pairs.data() + pairs.size();
     }
 
     std::vector<Pair>& chunk_;
     std::size_t chunk_size_;
-    std::size_t filled_ = 0;
     const PairSink& sink_;
     std::size_t& count_;
+    Pair* next_ = nullptr;  // where the next pair goes
+    Pair* end_ = nullptr;   // the end of the room it may go to
+    const PairAppender* direct_ = nullptr;
+    std::size_t counted_ = 0;  // with direct_: the pairs of the vector already counted
 };
 
 }  // namespace smb::detail

@@ -40,6 +40,46 @@ TEST(PairLimit, VectorDetectionThrowsPastTheLimitAndSinkStreams) {
     EXPECT_LE(largest_chunk, 64U);
 }
 
+// The pairs go straight into the caller's vector, room after room: the limit holds at its exact
+// count, whatever the room, the thread count or the pairs the vector held before.
+TEST(PairLimit, VectorDetectionHoldsExactlyTheLimitAndKeepsOldPairsWhenRefused) {
+    const std::vector<Box3d> boxes = identical_boxes(150);  // 11 175 pairs: rooms of 4096 and a part
+    const std::vector<Pair> before{{1, 2}, {3, 4}, {5, 6}};
+    const auto expected = test::brute_force_pairs<double, 3>(std::span<const Box3d>(boxes));
+    for (const std::size_t threads : {1U, 2U}) {
+        for (const std::size_t limit : {11175U, 11174U, 4096U, 4095U, 0U}) {
+            DetectorSettings settings;
+            settings.threads = threads;
+            settings.max_pairs_held = limit;
+            Detector3d detector(settings);
+            std::vector<Pair> pairs = before;
+            if (limit >= 11175U) {
+                const DetectStats stats = detector.detect(boxes, pairs);
+                EXPECT_EQ(stats.pairs, 11175U);
+                sort_pairs(pairs);
+                EXPECT_EQ(pairs, expected);
+            } else {
+                EXPECT_THROW(detector.detect(boxes, pairs), PairLimitError) << limit << ", " << threads << " threads";
+                EXPECT_EQ(pairs, before) << "the old pairs stay when the new ones are refused";
+            }
+            WorldSettings world_settings;
+            world_settings.threads = threads;
+            world_settings.max_pairs_held = limit;
+            World3d world(world_settings);
+            world.assign(boxes);
+            pairs = before;
+            if (limit >= 11175U) {
+                EXPECT_EQ(world.detect(pairs).pairs, 11175U);
+                sort_pairs(pairs);
+                EXPECT_EQ(pairs, expected);
+            } else {
+                EXPECT_THROW(world.detect(pairs), PairLimitError) << limit << ", " << threads << " threads";
+                EXPECT_EQ(pairs, before);
+            }
+        }
+    }
+}
+
 TEST(PairLimit, WorldStaysValidAfterASinkThrows) {
     WorldSettings small_chunks;
     small_chunks.pair_chunk_size = 16;
