@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <functional>
-#include <string>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "smb/errors.hpp"
