@@ -48,6 +48,11 @@ struct PairAppender {
     }
 };
 
+/// The PairAppender that `sink` holds (as std::cref(appender)), or null. Out of line: inlined
+/// into the detection's units, std::function::target() makes GCC 12 warn of a pointer used
+/// uninitialized inside it (-Wmaybe-uninitialized), a false alarm.
+[[nodiscard]] const PairAppender* appender_behind(const PairSink& sink) noexcept;
+
 /// Hands pairs to the caller's sink in chunks of the settings' size: one pair at a time (the
 /// paper's pipeline) or a run of pairs already in (a < b) order (the persistent pipeline, whose
 /// runs go to the sink without another copy where they fill whole chunks). Where the sink is a
@@ -61,8 +66,8 @@ public:
     /// is then one store, where push_back tests the capacity and calls out of line.
     PairOutput(std::vector<Pair>& chunk, std::size_t chunk_size, const PairSink& sink, std::size_t& count)
         : chunk_(chunk), chunk_size_(chunk_size), sink_(sink), count_(count) {
-        if (const auto* appender = sink.target<std::reference_wrapper<const PairAppender>>()) {
-            direct_ = &appender->get();
+        if (const PairAppender* appender = appender_behind(sink)) {
+            direct_ = appender;
             counted_ = direct_->pairs.size();
             make_room();
             return;
