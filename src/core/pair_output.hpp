@@ -69,7 +69,7 @@ public:
         if (const PairAppender* appender = appender_behind(sink)) {
             direct_ = appender;
             counted_ = direct_->pairs.size();
-            make_room();
+            close_at_end();
             return;
         }
         chunk_.resize(chunk_size_);
@@ -78,10 +78,10 @@ public:
     }
 
     // Inlined into the cell check's report loop (GCC would leave it a call there); a full room
-    // stays out of line.
+    // stays out of line. Room is made before a pair, not after: a flushed output takes more.
     [[gnu::always_inline]] inline void operator()(BoxId a, BoxId b) {
-        *next_++ = ordered_pair(a, b);
         if (next_ == end_) full();
+        *next_++ = ordered_pair(a, b);
     }
 
     void append(std::span<const Pair> ordered) {
@@ -90,8 +90,8 @@ public:
             close_direct();
             direct_->check_room(ordered.size());
             direct_->pairs.insert(direct_->pairs.end(), ordered.begin(), ordered.end());
-            next_ = nullptr;
-            make_room();
+            // No room made: a run after a run (the threads' blocks) would zero one for nothing.
+            close_at_end();
             return;
         }
         while (!ordered.empty()) {
@@ -105,14 +105,16 @@ public:
             const std::size_t take = std::min(ordered.size(), chunk_size_ - filled);
             next_ = std::copy_n(ordered.begin(), take, next_);
             ordered = ordered.subspan(take);
-            if (next_ == end_) full();
+            if (next_ == end_) send_chunk();
         }
     }
 
-    /// Hands on the pairs still held; a vector written directly is trimmed to its pairs.
+    /// Hands on the pairs still held; a vector written directly is trimmed to its pairs (a
+    /// later pair makes room again).
     void flush() {
         if (direct_ != nullptr) {
             close_direct();
+            close_at_end();
             return;
         }
         if (next_ != chunk_.data()) send_chunk();
@@ -124,10 +126,12 @@ private:
     static constexpr std::size_t kDirectRoom = 4096;
 
     [[gnu::noinline]] void full() {
-        if (direct_ != nullptr)
-            make_room();
-        else
+        if (direct_ == nullptr) {
             send_chunk();
+            return;
+        }
+        close_direct();
+        make_room();
     }
 
     void send_chunk() {
@@ -147,10 +151,16 @@ private:
         direct_->check_room(0);
     }
 
-    /// Room for kDirectRoom more pairs after the pairs written.
+    /// No room left after the pairs of the vector: the next pair makes some (full()).
+    void close_at_end() noexcept {
+        std::vector<Pair>& pairs = direct_->pairs;
+        next_ = pairs.data() + pairs.size();
+        end_ = next_;
+    }
+
+    /// Room for kDirectRoom more pairs after the pairs of the vector (closed: close_direct()).
     void make_room() {
         std::vector<Pair>& pairs = direct_->pairs;
-        if (next_ != nullptr) close_direct();
         const std::size_t used = pairs.size();
         pairs.resize(used + kDirectRoom);
         next_ = pairs.data() + used;
