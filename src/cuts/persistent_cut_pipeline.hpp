@@ -92,9 +92,7 @@ public:
     /// Where held coordinates start from (rounded input only); a new origin forgets every plane.
     void set_origin(const std::array<Input, Dim>& origin) {
         origin_ = origin;
-        cuts_.forget();
-        planned_segments_ = 0;
-        presort_.forget();
+        forget_cuts();
         order_state_ = OrderState::fresh;
     }
 
@@ -136,6 +134,13 @@ private:
     static_assert(!kRounded || std::same_as<Real, float>, "rounded input is held as floats");
 
     void plan_segments(std::size_t n, const DetectionSettings& settings);
+
+    /// The planes, their planned shape and the judgement of the copy by column, all forgotten.
+    void forget_cuts() {
+        cuts_.forget();
+        planned_segments_ = 0;
+        presort_.forget();
+    }
 
     /// Held boxes at positions a and b overlap: true when their input boxes do too. `sure`:
     /// the cell check found them overlapping by the sure margin (set_scene_bounds()).
@@ -191,9 +196,7 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     retested_ = 0;
     cell_order_.list_arrivals(n);
     if (n == 0) {
-        cuts_.forget();
-        planned_segments_ = 0;
-        presort_.forget();
+        forget_cuts();
         return;
     }
     const std::uint32_t segments_before = planned_segments_;
