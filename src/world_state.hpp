@@ -105,7 +105,7 @@ public:
                 engine.fold_removals(store_.compact(engine.listed(store_.slot_count())));
                 profile.update_seconds = settings_.profile ? whole.seconds() : 0;
             }
-            engine.detect({store_.boxes(), store_.ids(), nullptr, true}, settings_, settings_.skin, output, stats,
+            engine.detect({store_.boxes(), store_.ids(), nullptr, true, true}, settings_, settings_.skin, output, stats,
                           profile);
         }
         stats.boxes = store_.slot_count();

@@ -41,6 +41,9 @@ struct EngineInput {
     /// The boxes are valid already (a World's store); their bounds are found only where the
     /// held floats need them.
     bool valid = false;
+    /// keys[i] names the box the last detection saw at i, but at the slots fold_removals()
+    /// moved and those past the last count (a World's store): the skin reads only those keys.
+    bool keys_kept = false;
 };
 
 template <std::floating_point Real, int Dim>
@@ -71,7 +74,10 @@ public:
         return skin_detected_ ? slot_count : cuts_.listed();
     }
     /// A World's store dropped removed slots and renumbered the others.
-    void fold_removals(const SlotRenumbering& renumbering) { cuts_.fold_removals(renumbering); }
+    void fold_removals(const SlotRenumbering& renumbering) {
+        cuts_.fold_removals(renumbering);
+        skin_.fold_removals(renumbering);
+    }
 
     /// Forgets everything: the next detection starts afresh.
     void clear() {

@@ -50,8 +50,8 @@ bool DetectionEngine<Real, Dim>::detected_with_skin(const EngineInput<Real, Dim>
         --skin_pause_;
         return false;
     }
-    const bool detected = skin_.detect(input.boxes, input.keys, cuts_.origin(), bounds.lo, bounds.hi, skin, settings,
-                                       report, stats, profile);
+    const bool detected = skin_.detect(input.boxes, input.keys, input.keys_kept, cuts_.origin(), bounds.lo, bounds.hi,
+                                       skin, settings, report, stats, profile);
     if (!detected) {
         skin_pause_ = tuning::skin_pause;
         return false;

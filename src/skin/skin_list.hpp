@@ -42,6 +42,7 @@
 #include "skin/candidate_lives.hpp"
 #include "skin/fat_boxes.hpp"
 #include "skin/held_overlap.hpp"
+#include "skin/position_names.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
 #include "smb/profile.hpp"
@@ -56,19 +57,20 @@ public:
     using Held = Box<float, Dim>;
 
     /// Reports every overlapping pair of `input` (box i under keys[i], or under i where `keys` is
-    /// empty) to report(key_i, key_j), or in runs to report.append(). `origin`:
-    /// where held coordinates start (held_box.hpp; zero for float input). Returns false, having
+    /// empty) to report(key_i, key_j), or in runs to report.append(). `keys_kept`: keys[i] names
+    /// the box the last detection saw at i but where fold_removals() said (position_names.hpp).
+    /// `origin`: where held coordinates start (held_box.hpp; zero for float input). Returns false, having
     /// reported nothing and released its memory, when the fat boxes make more candidates than
     /// it will hold (about 32 per box), when a quarter of the boxes left their fat boxes since
     /// the last detection (a skin far too thin for the motion), or after two short lives of the
     /// candidates running (candidate_lives.hpp): the caller then detects without a skin.
     template <class Report>
-    bool detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> keys,
+    bool detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> keys, bool keys_kept,
                 const std::array<Input, Dim>& origin, const std::array<Input, Dim>& scene_lo,
                 const std::array<Input, Dim>& scene_hi, double skin, const DetectionSettings& settings, Report& report,
                 DetectStats& stats, DetectProfile& profile) {
         input_ = input;
-        keys_ = keys;
+        names_.follow(keys, keys_kept);
         threads_ = thread_count(settings);
         sure_margin_ = kExact ? 0.0F : held_sure_margin<Input, Dim>(origin, scene_lo, scene_hi);
         retested_ = 0;
@@ -126,13 +128,17 @@ public:
 
     void clear() { *this = SkinList(); }
 
+    /// A World's store moved boxes into the slots of removed ones (position_names.hpp).
+    void fold_removals(const SlotRenumbering& renumbering) {
+        if (built_) names_.fold_removals(renumbering);
+    }
+
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes = cells_.bytes_held() + (fat_.capacity() + held_.capacity()) * sizeof(Held) +
                             (slot_of_.capacity() + position_of_.capacity() + moved_.capacity() + fresh_.capacity()) *
                                 sizeof(std::uint32_t) +
                             state_.capacity() + gone_.capacity() * sizeof(Position) +
-                            dirty_.capacity() * sizeof(std::uint64_t) + key_of_.capacity() * sizeof(BoxId) +
-                            candidates_.bytes_held();
+                            dirty_.capacity() * sizeof(std::uint64_t) + names_.bytes_held() + candidates_.bytes_held();
         return bytes + scans_.bytes_held([](const Scan& scan) {
             return (scan.fresh.capacity() + scan.gone.capacity()) * sizeof(Position);
         });
@@ -190,10 +196,7 @@ private:
             if (p + ahead < count) prefetch_whole(&input_[slot_of_[p + ahead]]);
             held_[p] = held_box<Input, Dim>(input_[slot_of_[p]], origin_);
         }
-        if (!keys_.empty()) {
-            key_of_.resize(count);
-            for (std::size_t p = 0; p < count; ++p) key_of_[p] = keys_[slot_of_[p]];
-        }
+        names_.gather(slot_of_);
     }
 
     enum class Outcome { kept, rebuild, hopeless };
@@ -209,6 +212,7 @@ private:
         // order, are the lists of one scan.
         scans_.resize(threads_);
         const std::size_t count = slot_of_.size();
+        names_.read_moved(position_of_, n);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1 && count >= kParallelFrom)
         {
             const auto thread = static_cast<std::size_t>(this_thread());
@@ -243,7 +247,7 @@ private:
         for (std::size_t slot = known; slot < n; ++slot) {
             const auto p = static_cast<Position>(slot_of_.size());
             slot_of_.push_back(static_cast<Slot>(slot));
-            if (!keys_.empty()) key_of_.push_back(keys_[slot]);
+            names_.append(static_cast<Slot>(slot));
             position_of_.push_back(p);
             held_.back() = held_box<Input, Dim>(input_[slot], origin_);
             held_.push_back(Held{});  // the padding
@@ -298,15 +302,16 @@ private:
             }
             if (p + ahead < last && slot_of_[p + ahead] < n) {
                 prefetch_whole(&input_[slot_of_[p + ahead]]);
-                if (!keys_.empty()) prefetch_whole(&keys_[slot_of_[p + ahead]]);
+                if (names_.reread()) names_.prefetch(slot_of_[p + ahead]);
             }
             const Held held = held_box<Input, Dim>(input_[slot], origin_);
-            if (!keys_.empty()) key_of_[p] = keys_[slot];  // a World's slot may hold another id now
+            if (names_.reread()) names_.read(static_cast<Position>(p), slot);
             // Read before held_[p] is written: the two arrays start alike modulo 4 KiB (each its
             // own mapping), so the load after the store would wait on it (4K aliasing).
             const Held fat = fat_[p];
             held_[p] = held;
             if ((state & kGone) != 0 || !inside(held, fat)) {
+                names_.read(static_cast<Position>(p), slot);  // a slot back in the array has a new name
                 found.fresh.push_back(static_cast<Position>(p));
                 found.newly_moved += (state & kMoved) == 0 ? 1U : 0U;
             }
@@ -324,7 +329,7 @@ private:
     void test(Position a, Position b, Report& report) {
         const std::uint32_t bits = overlap_bits<Dim>(&held_[a], &held_[b], sure_margin_);
         if ((bits & 1U) != 0 && confirmed(a, b, (bits & 2U) != 0, retested_))
-            report(keys_.empty() ? BoxId{slot_of_[a]} : key_of_[a], keys_.empty() ? BoxId{slot_of_[b]} : key_of_[b]);
+            report(names_(a, slot_of_), names_(b, slot_of_));
     }
 
     /// Tests every candidate (candidate_list.hpp), after dropping those of boxes marked in dirty_
@@ -339,10 +344,10 @@ private:
                 held_.data(), dirty_.data(), sure_margin_, names, confirm, kExact};
             retested_ += candidates_.test(pass, dropping, threads_, report);
         };
-        if (keys_.empty())
-            test_named(std::span<const Slot>(slot_of_));
+        if (names_.named())
+            test_named(names_.keys_of_positions());
         else
-            test_named(std::span<const BoxId>(key_of_));
+            test_named(std::span<const Slot>(slot_of_));
     }
 
     /// The new candidates of fresh box `p`: the boxes that kept their fat box since the rebuild,
@@ -384,8 +389,7 @@ private:
     BulkVector<Held> fat_;              // per position
     BulkVector<Held> held_;             // per position: this detection's boxes, held as floats; one more of padding
     BulkVector<Slot> slot_of_;          // per position: the caller's index
-    std::span<const BoxId> keys_;       // per slot: the name it is reported under (empty: the slot)
-    BulkVector<BoxId> key_of_;          // per position, with keys: keys_[slot_of_[p]]
+    PositionNames names_;               // what each position is reported under
     BulkVector<Position> position_of_;  // per slot ever seen since the rebuild
     BulkVector<std::uint8_t> state_;    // per position: kMoved, kFresh, kGone, kDone
     std::vector<Position> moved_;       // positions with kMoved, each once
