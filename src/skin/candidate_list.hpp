@@ -113,11 +113,9 @@ public:
         workers_.resize(threads);
         std::size_t retested = 0;
         if (threads == 1 || count < tuning::skin_parallel_from) {
-            // Each pair straight to the report (into the caller's vector, where it is one), not
-            // through a block of pairs appended after: at 1M boxes, 2-3 ms of a 35 ms step.
-            Block& out = serial_;
-            out.retested = 0;
-            out.tombstones = 0;
+            // Each pair straight to the report (into the caller's vector, where it is one): a block
+            // of pairs appended after would write each pair twice.
+            Block out;
             test_range(pass, 0, count, dropping, workers_[0], out, [&](BoxId a, BoxId b) { report(a, b); });
             retested += out.retested;
             tombstones_ += out.tombstones;
@@ -136,7 +134,7 @@ public:
         bytes += workers_.bytes_held(
             [](const Worker& worker) { return worker.hits.capacity() * sizeof(Candidate) + worker.sure.capacity(); });
         for (const Block& block : blocks_) bytes += block.pairs.capacity() * sizeof(Pair);
-        return bytes + serial_.pairs.capacity() * sizeof(Pair);
+        return bytes;
     }
 
 private:
@@ -168,7 +166,6 @@ private:
                 block.retested = 0;
                 block.tombstones = 0;
                 const std::size_t first = item * tuning::skin_block_candidates;
-                block.pairs.reserve(tuning::skin_block_candidates);  // a pair at most per candidate
                 test_range(pass, first, std::min(first + tuning::skin_block_candidates, count), dropping,
                            workers_.mine(), block,
                            [&block](BoxId a, BoxId b) { block.pairs.push_back(ordered_pair(a, b)); });
@@ -254,7 +251,6 @@ private:
     std::size_t tombstones_ = 0;         // candidates dropped in place (a pair of a position with itself)
     PerThread<Worker> workers_;
     std::vector<Block> blocks_;  // two rounds of blocks of candidates (several threads)
-    Block serial_;               // the pass on one thread
 };
 
 }  // namespace smb::detail

@@ -59,11 +59,12 @@ public:
     /// Reports every overlapping pair of `input` (box i under keys[i], or under i where `keys` is
     /// empty) to report(key_i, key_j), or in runs to report.append(). `keys_kept`: keys[i] names
     /// the box the last detection saw at i but where fold_removals() said (position_names.hpp).
-    /// `origin`: where held coordinates start (held_box.hpp; zero for float input). Returns false, having
-    /// reported nothing and released its memory, when the fat boxes make more candidates than
-    /// it will hold (about 32 per box), when a quarter of the boxes left their fat boxes since
-    /// the last detection (a skin far too thin for the motion), or after two short lives of the
-    /// candidates running (candidate_lives.hpp): the caller then detects without a skin.
+    /// `origin`: where held coordinates start (held_box.hpp; zero for float input). Returns
+    /// false, having reported nothing and released its memory, when the fat boxes make more
+    /// candidates than it will hold (about 32 per box), when a quarter of the boxes left their fat
+    /// boxes since the last detection (a skin far too thin for the motion), or after two short
+    /// lives of the candidates running (candidate_lives.hpp): the caller then detects without a
+    /// skin.
     template <class Report>
     bool detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> keys, bool keys_kept,
                 const std::array<Input, Dim>& origin, const std::array<Input, Dim>& scene_lo,
