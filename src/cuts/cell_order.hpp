@@ -155,6 +155,8 @@ public:
     }
 
     /// Where the cell check writes the positions of the home boxes, cell by cell: the next order.
+    /// Until then, room the detection lends to the levels (LevelRegrouping::run()): what
+    /// copied_from() held is not needed once a detection has begun.
     [[nodiscard]] BulkVector<Position>& next() noexcept { return next_order_; }
 
     /// Makes next() the order: the check wrote positions in the copy, the order holds their slots.

@@ -37,10 +37,12 @@ public:
     /// Regroups the ordered `boxes` level by level on `threads` threads, cutting again the groups
     /// that left their band; adds each level's seconds to `profile` where `timed`, and returns
     /// the seconds spent cutting. id_at(position) gives a box's id (oversized boxes' tie-break).
+    /// `ranges` is room the caller lends for the run: each entry's segments, level by level.
     template <class IdAt>
     double run(std::span<const Box<Real, Dim>> boxes, CutTree<Real, Dim>& cuts, int threads, IdAt&& id_at, bool timed,
-               DetectProfile& profile) {
+               DetectProfile& profile, BulkVector<std::uint32_t>& ranges) {
         const std::size_t n = boxes.size();
+        ranges_ = &ranges;
         threads_ = threads;
         workers_.resize(threads);
         resize_with_slack(oversized_, n);
@@ -108,7 +110,6 @@ public:
         std::size_t bytes = 0;
         for (const auto& list : lists_) bytes += list.capacity() * sizeof(Position);
         for (const auto& begin : begin_) bytes += begin.capacity() * sizeof(std::uint32_t);
-        bytes += ranges_.capacity() * sizeof(std::uint32_t);
         bytes += oversized_.capacity() + oversized_list_.capacity() * sizeof(Position);
         bytes += counts_.capacity() * sizeof(std::uint32_t) + widest_.capacity() * sizeof(Real);
         return bytes + workers_.bytes_held([](const Worker& worker) { return worker.bytes_held(); });
@@ -130,7 +131,7 @@ private:
     std::array<BulkVector<Position>, 2> lists_;        // entries of a level, grouped by segment
     std::array<std::vector<std::uint32_t>, 2> begin_;  // group offsets into lists_
     int cells_list_ = 0;                               // which of lists_ holds the cells
-    BulkVector<std::uint32_t> ranges_;                 // per entry of the level: first | last segment << 16
+    BulkVector<std::uint32_t>* ranges_ = nullptr;      // per entry of the level: first | last segment << 16
     std::vector<std::uint32_t> counts_;                // the index array of levels 1 and deeper
     BulkVector<std::uint8_t> oversized_;               // per position; written through atomic_ref
     std::vector<Position> oversized_list_;
@@ -185,7 +186,7 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
                                                        std::vector<std::uint32_t>& out_begin) {
     const std::uint32_t k = cuts.segments(0);
     const auto shares = static_cast<std::size_t>(threads_);
-    resize_with_slack(ranges_, n);
+    resize_with_slack(*ranges_, n);
     auto share_begin = [&](std::size_t t) { return n * t / shares; };
     auto locate_shares = [&]() {
         std::uint32_t fullest = 0;
@@ -197,7 +198,7 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
             const std::size_t first = share_begin(static_cast<std::size_t>(t));
             const std::size_t last = share_begin(static_cast<std::size_t>(t) + 1);
             const PositionRange share{static_cast<Position>(first), static_cast<Position>(last - first)};
-            locator_.locate(0, 0, cuts, share, boxes, ranges_.data() + first, worker.count.data(), worker,
+            locator_.locate(0, 0, cuts, share, boxes, ranges_->data() + first, worker.count.data(), worker,
                             oversized_.data());
         }
         for (std::uint32_t s = 0; s < k; ++s) {
@@ -237,12 +238,13 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
     out_begin[k] = offset;
     resize_with_slack(out, offset);
     Position* target = out.data();
+    const std::uint32_t* ranges = ranges_->data();
 #pragma omp parallel for num_threads(threads_) schedule(static, 1)
     for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
         std::uint32_t* cursor = workers_[static_cast<std::size_t>(t)].count.data();
         for (std::size_t i = share_begin(static_cast<std::size_t>(t)); i < share_begin(static_cast<std::size_t>(t) + 1);
              ++i) {
-            const std::uint32_t range = ranges_[i];
+            const std::uint32_t range = ranges[i];
             const std::uint32_t lo = SegmentRange::lo_of(range);
             const std::uint32_t hi = SegmentRange::hi_of(range);
             if (lo > hi) continue;
@@ -267,7 +269,7 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
     const std::uint32_t k = cuts.segments(level);
     const int axis = axis_of_level(level);
     SMB_ASSERT(in_begin.size() == groups + 1, "one offset per group");
-    resize_with_slack(ranges_, in.size());
+    resize_with_slack(*ranges_, in.size());
     // The index array: registrations per segment (shifted by one), turned into offsets below.
     counts_.resize(groups * k + 1);
     std::uint32_t* count = counts_.data();
@@ -282,7 +284,7 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
         const auto g = static_cast<std::size_t>(group);
         Worker& worker = workers_.mine();
         const std::span<const Position> entries = in.subspan(in_begin[g], in_begin[g + 1] - in_begin[g]);
-        std::uint32_t* ranges = ranges_.data() + in_begin[g];
+        std::uint32_t* ranges = ranges_->data() + in_begin[g];
         std::uint32_t* segment_count = count + g * k + 1;
         const std::size_t marked_before = worker.marks.size();
         const std::uint32_t fullest = cuts.was_cut(level, g) ? locator_.locate(level, g, cuts, entries, boxes, ranges,
@@ -318,8 +320,8 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
         for (std::size_t g = 0; g < groups; ++g) {
             std::uint32_t* segment_count = count + g * k + 1;
             for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
-                if (oversized_[in[i]]) ranges_[i] = SegmentRange::kNone;
-                const std::uint32_t range = ranges_[i];
+                if (oversized_[in[i]]) (*ranges_)[i] = SegmentRange::kNone;
+                const std::uint32_t range = (*ranges_)[i];
                 for (std::uint32_t s = SegmentRange::lo_of(range); s <= SegmentRange::hi_of(range); ++s)
                     ++segment_count[s];
             }
@@ -332,12 +334,13 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
     // the entries came in (last step's), which keeps each cell's boxes in a few runs of the
     // ordered array, and a swept cell almost sorted.
     Position* target = out.data();
+    const std::uint32_t* ranges = ranges_->data();
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 4)
     for (std::ptrdiff_t group = 0; group < static_cast<std::ptrdiff_t>(groups); ++group) {
         const auto g = static_cast<std::size_t>(group);
         std::uint32_t* cursor = count + g * k;
         for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
-            const std::uint32_t range = ranges_[i];
+            const std::uint32_t range = ranges[i];
             const std::uint32_t lo = SegmentRange::lo_of(range);
             const std::uint32_t hi = SegmentRange::hi_of(range);
             if (lo > hi) continue;

@@ -234,7 +234,10 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     profile.copy_seconds += phase.seconds();
     const std::span<const Box<Real, Dim>> boxes = cell_order_.boxes();
     auto id_at = [this](Position position) { return cell_order_.id_at(position); };
-    const double cutting = regrouping_.run(boxes, cuts_, threads_, id_at, settings.profile, profile);
+    // The levels' per-entry segments live where the check then writes the next order: the two
+    // are never needed at once, and sharing saves 4 bytes a box.
+    const double cutting =
+        regrouping_.run(boxes, cuts_, threads_, id_at, settings.profile, profile, cell_order_.next());
     if (!cold && !presorted) presort_.judge(regrouping_.first_level_misses());
     profile.quantile_seconds += cutting;
     profile.cut_regroup_seconds += phase.lap() - cutting;
