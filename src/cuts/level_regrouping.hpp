@@ -54,12 +54,14 @@ public:
         locator_.judge_hints(0, cuts.segments(0), workers_);
         profile.level_seconds[0] += phase.lap();
         cells_list_ = 0;
+        cells_begin_ = 0;
         for (int level = 1; level < Dim; ++level) {
             const int source = (level - 1) % 2;
             const int target = level % 2;
             if (columns_ && level == Dim - 1) {
-                keep_columns_whole(cuts, lists_[source], begin_[source], lists_[target], begin_[target]);
-                cells_list_ = target;
+                keep_columns_whole(cuts, begin_[source], begin_[target]);
+                cells_list_ = source;
+                cells_begin_ = target;
                 profile.level_seconds[static_cast<std::size_t>(level)] += phase.lap();
                 continue;
             }
@@ -67,6 +69,7 @@ public:
                 regroup_level(level, cuts, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
             locator_.judge_hints(level, cuts.segments(level), workers_);
             cells_list_ = target;
+            cells_begin_ = target;
             profile.level_seconds[static_cast<std::size_t>(level)] += phase.lap();
         }
         // In x order (ties by id), so that the report and the next order depend on the boxes alone.
@@ -89,7 +92,7 @@ public:
 
     /// The cells the last run() built, bounded by `cuts`.
     [[nodiscard]] Cells<Real, Dim> cells(const CutTree<Real, Dim>& cuts) const noexcept {
-        return Cells<Real, Dim>{&cuts, lists_[cells_list_], begin_[cells_list_],
+        return Cells<Real, Dim>{&cuts, lists_[cells_list_], begin_[cells_begin_],
                                 columns_ ? std::span<const Real>(widest_) : std::span<const Real>()};
     }
 
@@ -97,7 +100,7 @@ public:
     /// and its bound on their x extent (Cells::widest). Empty where x is cut.
     [[nodiscard]] SweptColumns<Real> swept_columns() noexcept {
         if (!columns_) return {};
-        widest_.resize(begin_[cells_list_].size() - 1);
+        widest_.resize(begin_[cells_begin_].size() - 1);
         return {lists_[cells_list_], widest_};
     }
 
@@ -125,12 +128,13 @@ private:
                          std::span<const std::uint32_t> in_begin, std::span<const Box<Real, Dim>> boxes,
                          BulkVector<Position>& out, std::vector<std::uint32_t>& out_begin);
     void publish_marks();
-    void keep_columns_whole(CutTree<Real, Dim>& cuts, BulkVector<Position>& in, std::span<const std::uint32_t> in_begin,
-                            BulkVector<Position>& out, std::vector<std::uint32_t>& out_begin);
+    void keep_columns_whole(CutTree<Real, Dim>& cuts, std::span<const std::uint32_t> in_begin,
+                            std::vector<std::uint32_t>& out_begin);
 
     std::array<BulkVector<Position>, 2> lists_;        // entries of a level, grouped by segment
     std::array<std::vector<std::uint32_t>, 2> begin_;  // group offsets into lists_
-    int cells_list_ = 0;                               // which of lists_ holds the cells
+    int cells_list_ = 0;                               // which of lists_ holds the cells' entries
+    int cells_begin_ = 0;                              // which of begin_ holds their offsets
     BulkVector<std::uint32_t>* ranges_ = nullptr;      // per entry of the level: first | last segment << 16
     std::vector<std::uint32_t> counts_;                // the index array of levels 1 and deeper
     BulkVector<std::uint8_t> oversized_;               // per position; written through atomic_ref
@@ -144,11 +148,11 @@ private:
 };
 
 /// The deepest level of columns: every group whole, its entries all in its first segment. No box
-/// is located: the entries of the level above are the cells' entries as they are (moved, not
-/// copied), each group's first segment holding them and its other segments empty.
+/// is located: the entries of the level above are the cells' entries where they are, each
+/// group's first segment holding them and its other segments empty. The other list, which
+/// holds the level before, keeps its own size, not the cells'.
 template <std::floating_point Real, int Dim>
-void LevelRegrouping<Real, Dim>::keep_columns_whole(CutTree<Real, Dim>& cuts, BulkVector<Position>& in,
-                                                    std::span<const std::uint32_t> in_begin, BulkVector<Position>& out,
+void LevelRegrouping<Real, Dim>::keep_columns_whole(CutTree<Real, Dim>& cuts, std::span<const std::uint32_t> in_begin,
                                                     std::vector<std::uint32_t>& out_begin) {
     const std::size_t groups = cuts.groups(Dim - 1);
     const std::uint32_t k = cuts.segments(Dim - 1);
@@ -161,7 +165,6 @@ void LevelRegrouping<Real, Dim>::keep_columns_whole(CutTree<Real, Dim>& cuts, Bu
                   out_begin.begin() + static_cast<std::ptrdiff_t>((g + 1) * k), in_begin[g + 1]);
     }
     out_begin[groups * k] = in_begin[groups];
-    out.swap(in);
 }
 
 /// Makes the threads' marks visible as oversized boxes, each once.
