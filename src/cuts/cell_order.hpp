@@ -34,15 +34,20 @@ template <std::floating_point Real, int Dim, std::floating_point Input>
 class CellOrder {
 public:
     /// Drops removed slots from the order and renumbers the others (BoxStore::compact(), which
-    /// leaves the listed boxes in the first slots).
-    void fold_removals(const SlotRenumbering& renumbering) {
+    /// leaves the listed boxes in the first slots); the carried ids follow (advance()).
+    void fold_removals(const SlotRenumbering& renumbering, BulkVector<std::uint32_t>& carried_ids) {
         std::size_t write = 0;
-        for (const Slot slot : order_) {
-            const Slot now = renumbering(slot);
-            if (now != kNoSlot) order_[write++] = now;
+        std::size_t carried = 0;
+        for (std::size_t read = 0; read < order_.size(); ++read) {
+            const Slot now = renumbering(order_[read]);
+            if (now == kNoSlot) continue;
+            // A renumbered slot holds the same box, under the same id.
+            if (read < carried_count_) carried_ids[carried++] = carried_ids[read];
+            order_[write++] = now;
         }
         order_.resize(write);
         listed_ = write;
+        carried_count_ = carried;
     }
 
     /// Slots [0, listed()) are in the order; later ones arrived since the last detection.
@@ -51,6 +56,7 @@ public:
     /// Forgets the slots from `n` on: a Detector's caller passed fewer boxes than last time.
     void forget_slots_from(std::size_t n) {
         if (n >= listed_) return;
+        forget_carried();
         std::erase_if(order_, [n](Slot slot) { return slot >= n; });
         listed_ = std::min(listed_, n);
     }
@@ -70,11 +76,16 @@ public:
     /// After a detection: the slot each position of its copy holds (the order it was made in).
     [[nodiscard]] std::span<const Slot> copied_from() const noexcept { return next_order_; }
 
-    /// Copies the boxes (held from `origin` where Real rounds Input) and their ids in order.
+    /// Copies the boxes (held from `origin` where Real rounds Input) and their ids in order, the
+    /// ids advance() carried read from `carried_ids`.
     void copy(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids,
-              const std::array<Input, Dim>& origin, int threads) {
+              const std::array<Input, Dim>& origin, int threads, const BulkVector<std::uint32_t>& carried_ids) {
         const std::size_t n = order_.size();
         size_copy(n, store_ids);
+        // The ids carried from the last copy (advance()) are read in order; the others, from the
+        // store like the boxes.
+        const std::uint32_t* carried = carried_ids.data();
+        const std::size_t carried_count = own_ids_ ? carried_count_ : 0;
         // Each box is a miss of its own (the store is in slot order, not cell order) and the loop
         // does little else, so the requests must start far ahead to keep enough in flight.
         constexpr std::size_t ahead = 64;
@@ -84,11 +95,16 @@ public:
             const auto i = static_cast<std::size_t>(j);
             if (i + ahead < n) {
                 prefetch_whole(&store_boxes[order_[i + ahead]]);
-                if (!store_ids.empty()) __builtin_prefetch(&store_ids[order_[i + ahead]]);
+                if (own_ids_ && i + ahead >= carried_count) __builtin_prefetch(&store_ids[order_[i + ahead]]);
             }
             ordered_[i] = held_as<Real>(store_boxes[order_[i]], origin);
-            if (own_ids_) ordered_ids_[i] = store_ids[order_[i]];
+            if (own_ids_) ordered_ids_[i] = i < carried_count ? BoxId{carried[i]} : store_ids[order_[i]];
         }
+#ifdef SMB_VALIDATE
+        for (std::size_t i = 0; i < carried_count; ++i)
+            SMB_ASSERT(ordered_ids_[i] == store_ids[order_[i]], "a carried id names the box of its slot");
+#endif
+        forget_carried();
     }
 
     /// copy() where the order follows no cell (the first detection, new cuts, boxes that jumped
@@ -102,6 +118,7 @@ public:
                         const std::array<Input, Dim>& origin, std::size_t columns, ColumnOf&& column_of, int threads) {
         const std::size_t n = order_.size();
         SMB_ASSERT(store_boxes.size() == n, "the order holds every box once");
+        forget_carried();
         size_copy(n, store_ids);
         // Each slot's column is held where the cell check writes the next order: no memory of
         // its own, and the check finds those pages mapped.
@@ -160,11 +177,32 @@ public:
     [[nodiscard]] BulkVector<Position>& next() noexcept { return next_order_; }
 
     /// Makes next() the order: the check wrote positions in the copy, the order holds their slots.
-    void advance(int threads) {
-        const auto count = static_cast<std::ptrdiff_t>(next_order_.size());
+    /// Where the ids were given and each slot keeps its id from one detection to the next but
+    /// where fold_removals() moves it (`ids_kept`, a World's store), the ids are carried into the
+    /// next order too, when all fit 32 bits, in `carried_ids` (room the caller leaves alone until
+    /// the next copy): the next copy then reads them in order instead of gathering them by slot.
+    void advance(int threads, bool ids_kept, BulkVector<std::uint32_t>& carried_ids) {
+        const std::size_t n = next_order_.size();
+        const auto count = static_cast<std::ptrdiff_t>(n);
+        if (!own_ids_ || !ids_kept) {
 #pragma omp parallel for num_threads(threads) schedule(static)
-        for (std::ptrdiff_t i = 0; i < count; ++i) next_order_[i] = order_[next_order_[i]];
+            for (std::ptrdiff_t i = 0; i < count; ++i) next_order_[i] = order_[next_order_[i]];
+            order_.swap(next_order_);
+            return;
+        }
+        resize_with_slack(carried_ids, n);
+        std::uint32_t* low = carried_ids.data();
+        BoxId high = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(| : high)
+        for (std::ptrdiff_t i = 0; i < count; ++i) {
+            const Position position = next_order_[i];
+            const BoxId id = ordered_ids_[position];
+            low[i] = static_cast<std::uint32_t>(id);
+            high |= id >> 32;
+            next_order_[i] = order_[position];
+        }
         order_.swap(next_order_);
+        if (high == 0) carried_count_ = n;
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
@@ -173,6 +211,8 @@ public:
     }
 
 private:
+    void forget_carried() noexcept { carried_count_ = 0; }
+
     /// Room for n copied boxes, and for their ids where the caller gives them.
     void size_copy(std::size_t n, std::span<const BoxId> store_ids) {
         resize_with_slack(ordered_, n);
@@ -189,6 +229,7 @@ private:
     BulkVector<BoxId> ordered_ids_;       // and their ids, unless the ids are the slots
     bool own_ids_ = true;                 // ids were given; else box `slot` has id `slot`
     std::size_t listed_ = 0;              // slots [0, listed_) are in order_; later ones are new
+    std::size_t carried_count_ = 0;       // order_'s first places whose ids advance() carried
 };
 
 }  // namespace smb::detail

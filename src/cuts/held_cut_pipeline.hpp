@@ -78,15 +78,15 @@ public:
     /// where `ids` is empty) as judge() chose to hold them; `bounds` as judge() had them.
     template <class Report>
     void detect(std::span<const Box<Real, Dim>> boxes, std::span<const BoxId> ids, const SceneBounds<Real, Dim>& bounds,
-                const DetectionSettings& settings, Report& report, DetectProfile& profile) {
+                const DetectionSettings& settings, Report& report, DetectProfile& profile, bool ids_kept = false) {
         SMB_ASSERT(precision_ != HeldPrecision::none, "judge() chose what to hold");
         retested_ = 0;
         if (uses_rounded()) {
             rounded_.set_scene_bounds(bounds.lo, bounds.hi);
-            rounded_.detect(boxes, ids, settings, report, profile);
+            rounded_.detect(boxes, ids, settings, report, profile, ids_kept);
             if constexpr (kMayRound) retested_ = rounded_.retested();
         } else {
-            exact_.detect(boxes, ids, settings, report, profile);
+            exact_.detect(boxes, ids, settings, report, profile, ids_kept);
         }
     }
 

@@ -104,6 +104,10 @@ public:
         return {lists_[cells_list_], widest_};
     }
 
+    /// Room between two runs, for a pipeline whose cells nobody reads between detections (the
+    /// cells' entries may be in it): the next run() writes it over.
+    [[nodiscard]] BulkVector<Position>& spare_list() noexcept { return lists_[0]; }
+
     /// The oversized boxes of the last run(), in x order (ties by id); they are in no cell.
     [[nodiscard]] std::span<const Position> oversized() const noexcept { return oversized_list_; }
     /// Per position: whether the box is oversized.

@@ -66,7 +66,9 @@ public:
 
     /// Drops removed slots from the order and renumbers the others (BoxStore::compact(), which
     /// leaves the listed boxes in the first slots).
-    void fold_removals(const SlotRenumbering& renumbering) { cell_order_.fold_removals(renumbering); }
+    void fold_removals(const SlotRenumbering& renumbering) {
+        cell_order_.fold_removals(renumbering, regrouping_.spare_list());
+    }
 
     /// Slots [0, listed()) are in the order; later ones arrived since the last detection.
     [[nodiscard]] std::size_t listed() const noexcept { return cell_order_.listed(); }
@@ -78,10 +80,11 @@ public:
     /// runs, report(id_a, id_b) for single pairs): box `slot` of `input` under id ids[slot], or
     /// under id `slot` where `ids` is empty. Where the pipeline holds floats of double input, the held
     /// boxes are shifted by set_origin()'s origin and rounded (held_box.hpp), and each pair they
-    /// cannot settle is tested again on `input`.
+    /// cannot settle is tested again on `input`. `ids_kept`: ids[slot] names the box the last
+    /// detection saw at `slot`, but where fold_removals() moved it (a World's store).
     template <class Report>
     void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const DetectionSettings& settings,
-                Report& report, DetectProfile& profile);
+                Report& report, DetectProfile& profile, bool ids_kept = false);
 
     /// Whether the next detection copies the boxes grouped by column (column_presort.hpp).
     [[nodiscard]] bool presorting() const noexcept { return presort_.sorting(); }
@@ -108,6 +111,7 @@ public:
     /// left its skin this way, without a detection of its own.
     template <class Visit>
     void for_each_held_overlapping(const Box<Real, Dim>& query, Visit&& visit) const {
+        SMB_ASSERT(!cell_order_.own_ids(), "the cells of a pipeline given ids are lent after it (spare_list())");
         const std::span<const Box<Real, Dim>> boxes = cell_order_.boxes();
         if (cuts_.cells() == 0 || boxes.empty()) return;
         const std::span<const Slot> slot_at = cell_order_.copied_from();
@@ -190,7 +194,7 @@ template <std::floating_point Real, int Dim, std::floating_point Input>
 template <class Report>
 void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids,
                                                      const DetectionSettings& settings, Report& report,
-                                                     DetectProfile& profile) {
+                                                     DetectProfile& profile, bool ids_kept) {
     const std::size_t n = input.size();
     input_ = input;
     retested_ = 0;
@@ -229,7 +233,7 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
         presort_.note_columns(input, origin_, cuts_);
         copy_by_column();
     } else {
-        cell_order_.copy(input, ids, origin_, threads_);
+        cell_order_.copy(input, ids, origin_, threads_, regrouping_.spare_list());
     }
     profile.copy_seconds += phase.seconds();
     const std::span<const Box<Real, Dim>> boxes = cell_order_.boxes();
@@ -256,7 +260,7 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     // The check wrote positions in the ordered copy; the next order holds their slots. How far
     // boxes moved in the order is no sign of motion (the boxes a step adds shift every later
     // place by up to their number): the hint's judgement counts the misses instead.
-    cell_order_.advance(threads_);
+    cell_order_.advance(threads_, ids_kept, regrouping_.spare_list());
     order_state_ = OrderState::follows_cells;
 }
 

@@ -42,7 +42,8 @@ struct EngineInput {
     /// held floats need them.
     bool valid = false;
     /// keys[i] names the box the last detection saw at i, but at the slots fold_removals()
-    /// moved and those past the last count (a World's store): the skin reads only those keys.
+    /// moved and those past the last count (a World's store): the skin reads only those keys,
+    /// and the cuts carry the others from one copy to the next (CellOrder::advance()).
     bool keys_kept = false;
 };
 

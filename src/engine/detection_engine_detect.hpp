@@ -29,7 +29,7 @@ void DetectionEngine<Real, Dim>::detect(const EngineInput<Real, Dim>& input, con
     skin_detected_ = detected_with_skin(input, bounds, settings, skin, report, stats, profile);
     if (!skin_detected_) {
         cuts_.forget_slots_from(input.boxes.size());
-        cuts_.detect(input.boxes, input.keys, bounds, settings, report, profile);
+        cuts_.detect(input.boxes, input.keys, bounds, settings, report, profile, input.keys_kept);
     }
 }
 

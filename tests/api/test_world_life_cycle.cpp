@@ -266,6 +266,42 @@ TYPED_TEST(WorldLifeCycleTest, UnderASkinABoxMovedIntoARemovedBoxsPlaceIsReporte
     }
 }
 
+TYPED_TEST(WorldLifeCycleTest, IdsFollowTheirBoxesThroughRemovalsWhileIdsPast32BitsComeAndGo) {
+    // Where every id fits 32 bits, a detection carries the ids into the next order instead of
+    // reading them from the store again; removals move boxes to other slots, and an id past
+    // 32 bits stops the carrying until it leaves. Every step moves, removes and inserts.
+    Random random(2401);
+    auto fresh_box = [&random] {
+        return random_box<typename TestFixture::Real, TestFixture::Dim>(random, 0, 25, 0.5, 2);
+    };
+    std::vector<BoxId> present;
+    BoxId next_id = 0;
+    for (; next_id < 600; ++next_id) {
+        this->insert(next_id, fresh_box());
+        present.push_back(next_id);
+    }
+    this->check("start");
+    const BoxId wide = (BoxId{1} << 32) + 5;
+    for (int step = 0; step < 30; ++step) {
+        for (const BoxId id : present) {
+            if (uniform(random, 0, 1) < 0.5) this->update(id, fresh_box());
+        }
+        for (int k = 0; k < 20; ++k) {
+            const std::size_t at = uniform_index(random, present.size() - 1);
+            this->remove(present[at]);
+            present[at] = present.back();
+            present.pop_back();
+        }
+        for (int k = 0; k < 20; ++k) {
+            this->insert(next_id, fresh_box());
+            present.push_back(next_id++);
+        }
+        if (step == 10) this->insert(wide, fresh_box());
+        if (step == 20) this->remove(wide);
+        this->check("moves, removals and insertions");
+    }
+}
+
 TYPED_TEST(WorldLifeCycleTest, MovedWorldKeepsItsBoxes) {
     Random random(2401);
     for (BoxId id = 0; id < 100; ++id)
