@@ -259,8 +259,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
 #endif
     // The check wrote positions in the ordered copy; the next order holds their slots. How far
     // boxes moved in the order is no sign of motion (the boxes a step adds shift every later
-    // place by up to their number): the hint's judgement counts the misses instead.
-    cell_order_.advance(threads_, ids_kept, regrouping_.spare_list());
+    // place by up to their number): the hint's judgement counts the misses instead. A next
+    // detection that copies by column reads the ids from the input: none are carried for it.
+    cell_order_.advance(threads_, ids_kept && !presort_.sorting(), regrouping_.spare_list());
     order_state_ = OrderState::follows_cells;
 }
 
