@@ -42,7 +42,6 @@ public:
     double run(std::span<const Box<Real, Dim>> boxes, CutTree<Real, Dim>& cuts, int threads, IdAt&& id_at, bool timed,
                DetectProfile& profile, BulkVector<std::uint32_t>& ranges) {
         const std::size_t n = boxes.size();
-        ranges_ = &ranges;
         threads_ = threads;
         workers_.resize(threads);
         resize_with_slack(oversized_, n);
@@ -50,7 +49,7 @@ public:
         oversized_list_.clear();
         timed_ = timed;
         Stopwatch phase{timed};
-        double cutting = regroup_first_level(n, cuts, boxes, lists_[0], begin_[0]);
+        double cutting = regroup_first_level(n, cuts, boxes, ranges, lists_[0], begin_[0]);
         locator_.judge_hints(0, cuts.segments(0), workers_);
         profile.level_seconds[0] += phase.lap();
         cells_list_ = 0;
@@ -65,8 +64,8 @@ public:
                 profile.level_seconds[static_cast<std::size_t>(level)] += phase.lap();
                 continue;
             }
-            cutting +=
-                regroup_level(level, cuts, lists_[source], begin_[source], boxes, lists_[target], begin_[target]);
+            cutting += regroup_level(level, cuts, lists_[source], begin_[source], boxes, ranges, lists_[target],
+                                     begin_[target]);
             locator_.judge_hints(level, cuts.segments(level), workers_);
             cells_list_ = target;
             cells_begin_ = target;
@@ -127,10 +126,12 @@ private:
     static constexpr int axis_of_level(int level) noexcept { return CutTree<Real, Dim>::axis_of_level(level); }
 
     double regroup_first_level(std::size_t n, CutTree<Real, Dim>& cuts, std::span<const Box<Real, Dim>> boxes,
-                               BulkVector<Position>& out, std::vector<std::uint32_t>& out_begin);
+                               BulkVector<std::uint32_t>& ranges, BulkVector<Position>& out,
+                               std::vector<std::uint32_t>& out_begin);
     double regroup_level(int level, CutTree<Real, Dim>& cuts, std::span<const Position> in,
                          std::span<const std::uint32_t> in_begin, std::span<const Box<Real, Dim>> boxes,
-                         BulkVector<Position>& out, std::vector<std::uint32_t>& out_begin);
+                         BulkVector<std::uint32_t>& ranges, BulkVector<Position>& out,
+                         std::vector<std::uint32_t>& out_begin);
     void publish_marks();
     void keep_columns_whole(CutTree<Real, Dim>& cuts, std::span<const std::uint32_t> in_begin,
                             std::vector<std::uint32_t>& out_begin);
@@ -139,7 +140,6 @@ private:
     std::array<std::vector<std::uint32_t>, 2> begin_;  // group offsets into lists_
     int cells_list_ = 0;                               // which of lists_ holds the cells' entries
     int cells_begin_ = 0;                              // which of begin_ holds their offsets
-    BulkVector<std::uint32_t>* ranges_ = nullptr;      // per entry of the level: first | last segment << 16
     std::vector<std::uint32_t> counts_;                // the index array of levels 1 and deeper
     BulkVector<std::uint8_t> oversized_;               // per position; written through atomic_ref
     std::vector<Position> oversized_list_;
@@ -189,11 +189,12 @@ void LevelRegrouping<Real, Dim>::publish_marks() {
 /// offsets that keep the counting sort stable.
 template <std::floating_point Real, int Dim>
 double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Real, Dim>& cuts,
-                                                       std::span<const Box<Real, Dim>> boxes, BulkVector<Position>& out,
+                                                       std::span<const Box<Real, Dim>> boxes,
+                                                       BulkVector<std::uint32_t>& ranges, BulkVector<Position>& out,
                                                        std::vector<std::uint32_t>& out_begin) {
     const std::uint32_t k = cuts.segments(0);
     const auto shares = static_cast<std::size_t>(threads_);
-    resize_with_slack(*ranges_, n);
+    resize_with_slack(ranges, n);  // per entry: first | last segment << 16
     auto share_begin = [&](std::size_t t) { return n * t / shares; };
     auto locate_shares = [&]() {
         std::uint32_t fullest = 0;
@@ -205,7 +206,7 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
             const std::size_t first = share_begin(static_cast<std::size_t>(t));
             const std::size_t last = share_begin(static_cast<std::size_t>(t) + 1);
             const PositionRange share{static_cast<Position>(first), static_cast<Position>(last - first)};
-            locator_.locate(0, 0, cuts, share, boxes, ranges_->data() + first, worker.count.data(), worker,
+            locator_.locate(0, 0, cuts, share, boxes, ranges.data() + first, worker.count.data(), worker,
                             oversized_.data());
         }
         for (std::uint32_t s = 0; s < k; ++s) {
@@ -245,13 +246,13 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
     out_begin[k] = offset;
     resize_with_slack(out, offset);
     Position* target = out.data();
-    const std::uint32_t* ranges = ranges_->data();
+    const std::uint32_t* entry_ranges = ranges.data();
 #pragma omp parallel for num_threads(threads_) schedule(static, 1)
     for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
         std::uint32_t* cursor = workers_[static_cast<std::size_t>(t)].count.data();
         for (std::size_t i = share_begin(static_cast<std::size_t>(t)); i < share_begin(static_cast<std::size_t>(t) + 1);
              ++i) {
-            const std::uint32_t range = ranges[i];
+            const std::uint32_t range = entry_ranges[i];
             const std::uint32_t lo = SegmentRange::lo_of(range);
             const std::uint32_t hi = SegmentRange::hi_of(range);
             if (lo > hi) continue;
@@ -270,13 +271,14 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
 template <std::floating_point Real, int Dim>
 double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& cuts, std::span<const Position> in,
                                                  std::span<const std::uint32_t> in_begin,
-                                                 std::span<const Box<Real, Dim>> boxes, BulkVector<Position>& out,
+                                                 std::span<const Box<Real, Dim>> boxes,
+                                                 BulkVector<std::uint32_t>& ranges, BulkVector<Position>& out,
                                                  std::vector<std::uint32_t>& out_begin) {
     const std::size_t groups = cuts.groups(level);
     const std::uint32_t k = cuts.segments(level);
     const int axis = axis_of_level(level);
     SMB_ASSERT(in_begin.size() == groups + 1, "one offset per group");
-    resize_with_slack(*ranges_, in.size());
+    resize_with_slack(ranges, in.size());
     // The index array: registrations per segment (shifted by one), turned into offsets below.
     counts_.resize(groups * k + 1);
     std::uint32_t* count = counts_.data();
@@ -291,12 +293,13 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
         const auto g = static_cast<std::size_t>(group);
         Worker& worker = workers_.mine();
         const std::span<const Position> entries = in.subspan(in_begin[g], in_begin[g + 1] - in_begin[g]);
-        std::uint32_t* ranges = ranges_->data() + in_begin[g];
+        std::uint32_t* group_ranges = ranges.data() + in_begin[g];
         std::uint32_t* segment_count = count + g * k + 1;
         const std::size_t marked_before = worker.marks.size();
-        const std::uint32_t fullest = cuts.was_cut(level, g) ? locator_.locate(level, g, cuts, entries, boxes, ranges,
-                                                                               segment_count, worker, oversized_.data())
-                                                             : 0;
+        const std::uint32_t fullest = cuts.was_cut(level, g)
+                                          ? locator_.locate(level, g, cuts, entries, boxes, group_ranges, segment_count,
+                                                            worker, oversized_.data())
+                                          : 0;
         if (cuts.needs_cut(level, g, fullest)) {
             const Stopwatch cut_watch{timed_};
             // What the old planes called oversized is judged again against the new ones.
@@ -307,7 +310,7 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
                 [&](std::size_t i) { return boxes[entries[i]].max[axis] - boxes[entries[i]].min[axis]; },
                 worker.quantiles);
             const std::uint32_t balanced =
-                locator_.locate(level, g, cuts, entries, boxes, ranges, segment_count, worker, oversized_.data());
+                locator_.locate(level, g, cuts, entries, boxes, group_ranges, segment_count, worker, oversized_.data());
             std::size_t registrations = 0;
             for (std::uint32_t s = 0; s < k; ++s) registrations += segment_count[s];
             cuts.set_band(level, g, registrations, balanced);
@@ -327,8 +330,8 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
         for (std::size_t g = 0; g < groups; ++g) {
             std::uint32_t* segment_count = count + g * k + 1;
             for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
-                if (oversized_[in[i]]) (*ranges_)[i] = SegmentRange::kNone;
-                const std::uint32_t range = (*ranges_)[i];
+                if (oversized_[in[i]]) ranges[i] = SegmentRange::kNone;
+                const std::uint32_t range = ranges[i];
                 for (std::uint32_t s = SegmentRange::lo_of(range); s <= SegmentRange::hi_of(range); ++s)
                     ++segment_count[s];
             }
@@ -341,13 +344,13 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
     // the entries came in (last step's), which keeps each cell's boxes in a few runs of the
     // ordered array, and a swept cell almost sorted.
     Position* target = out.data();
-    const std::uint32_t* ranges = ranges_->data();
+    const std::uint32_t* entry_ranges = ranges.data();
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 4)
     for (std::ptrdiff_t group = 0; group < static_cast<std::ptrdiff_t>(groups); ++group) {
         const auto g = static_cast<std::size_t>(group);
         std::uint32_t* cursor = count + g * k;
         for (std::uint32_t i = in_begin[g]; i < in_begin[g + 1]; ++i) {
-            const std::uint32_t range = ranges[i];
+            const std::uint32_t range = entry_ranges[i];
             const std::uint32_t lo = SegmentRange::lo_of(range);
             const std::uint32_t hi = SegmentRange::hi_of(range);
             if (lo > hi) continue;
