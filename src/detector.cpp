@@ -99,6 +99,16 @@ DetectStats Detector<Real, Dim>::detect(std::span<const box_type> boxes, const P
 }
 
 template <std::floating_point Real, int Dim>
+std::span<const std::uint32_t> Detector<Real, Dim>::suggested_order() const noexcept {
+    return state_ ? state_->suggested_order() : std::span<const std::uint32_t>();
+}
+
+template <std::floating_point Real, int Dim>
+void Detector<Real, Dim>::follow_suggested_order() {
+    if (state_) state_->follow_suggested_order();
+}
+
+template <std::floating_point Real, int Dim>
 void Detector<Real, Dim>::clear() {
     if (state_) state_->clear();
 }

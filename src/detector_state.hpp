@@ -52,8 +52,16 @@ public:
         }
         return CandidatePairs{candidate_pairs_, candidate_margin_, true};
     }
+    /// Detector::suggested_order(): the engine's, where it detected over the whole array last.
+    std::span<const std::uint32_t> suggested_order() const noexcept {
+        return whole_array_detected_ ? engine_.suggested_order() : std::span<const std::uint32_t>();
+    }
+    void follow_suggested_order() {
+        if (whole_array_detected_) engine_.follow_suggested_order();
+    }
     void clear() {
         skin_detected_ = false;
+        whole_array_detected_ = false;
         std::vector<Pair>().swap(candidate_pairs_);
         engine_.clear();
         periodic_.reset();
@@ -67,6 +75,7 @@ public:
         const Stopwatch whole;
         classes_.clear();
         skin_detected_ = false;
+        whole_array_detected_ = false;
         candidates_ready_ = false;
         DetectStats stats;
         DetectProfile profile;
@@ -75,6 +84,7 @@ public:
         engine_.detect({boxes, {}, nullptr, false}, settings_, settings_.skin, output, stats, profile);
         output.flush();
         skin_detected_ = engine_.skin_detected();
+        whole_array_detected_ = true;
         return finish(stats, profile, whole);
     }
 
@@ -112,6 +122,7 @@ public:
                                 std::vector<PeriodicPair>& pairs, UpdateEvents&&... update_events) {
         check_domain(domain);  // the boxes are checked as they are gathered
         skin_detected_ = false;
+        whole_array_detected_ = false;
         if (!periodic_) periodic_ = std::make_unique<PeriodicPath<Real, Dim>>();
         const Stopwatch whole;
         DetectProfile profile;
@@ -130,6 +141,7 @@ private:
                                   const PairSink& sink, const Stopwatch& whole) {
         engine_.clear();
         skin_detected_ = false;
+        whole_array_detected_ = false;
         DetectStats stats;
         DetectProfile profile;
         stats.boxes = boxes.size();
@@ -157,8 +169,9 @@ private:
     DetectProfile profile_;  // all zero unless settings_.profile
     std::vector<Pair> chunk_;
     ClassDetections<Real, Dim> classes_{1};
-    bool skin_detected_ = false;     // the last detection ran on the skin list, and returned
-    bool candidates_ready_ = false;  // candidate_pairs_ and candidate_margin_ are its own
+    bool skin_detected_ = false;         // the last detection ran on the skin list, and returned
+    bool whole_array_detected_ = false;  // the engine's order is of the last detection's array
+    bool candidates_ready_ = false;      // candidate_pairs_ and candidate_margin_ are its own
     std::vector<Pair> candidate_pairs_;
     double candidate_margin_ = 0;
     std::unique_ptr<PeriodicPath<Real, Dim>> periodic_;

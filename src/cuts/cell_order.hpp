@@ -50,6 +50,13 @@ public:
         carried_count_ = carried;
     }
 
+    /// The caller moved the box of order()[p] to slot p, for every p: the order becomes the
+    /// slots themselves.
+    void follow_own_order() {
+        for (std::size_t p = 0; p < order_.size(); ++p) order_[p] = static_cast<Slot>(p);
+        forget_carried();
+    }
+
     /// Slots [0, listed()) are in the order; later ones arrived since the last detection.
     [[nodiscard]] std::size_t listed() const noexcept { return listed_; }
 

@@ -70,6 +70,9 @@ public:
         cell_order_.fold_removals(renumbering, regrouping_.spare_list());
     }
 
+    /// The caller renumbered its boxes by order(): the box at order()[p] is now at slot p.
+    void follow_own_order() { cell_order_.follow_own_order(); }
+
     /// Slots [0, listed()) are in the order; later ones arrived since the last detection.
     [[nodiscard]] std::size_t listed() const noexcept { return cell_order_.listed(); }
 

@@ -74,6 +74,16 @@ public:
     [[nodiscard]] std::size_t listed(std::size_t slot_count) const noexcept {
         return skin_detected_ ? slot_count : cuts_.listed();
     }
+    /// The slots in the order the cuts read them next (every slot once), where the cuts
+    /// detected last; empty after the skin.
+    [[nodiscard]] std::span<const Slot> suggested_order() const noexcept {
+        return skin_detected_ ? std::span<const Slot>() : cuts_.order();
+    }
+    /// The caller renumbered its boxes by suggested_order(): slot p holds the box that was at
+    /// suggested_order()[p].
+    void follow_suggested_order() {
+        if (!skin_detected_) cuts_.follow_own_order();
+    }
     /// A World's store dropped removed slots and renumbered the others.
     void fold_removals(const SlotRenumbering& renumbering) {
         cuts_.fold_removals(renumbering);
