@@ -20,7 +20,8 @@ template <int Dim>
 
 /// smb::Detector over an array in which each body keeps its index (no ids inside smb).
 template <int Dim>
-[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const DetectorSettings& settings);
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const DetectorSettings& settings,
+                                                                std::size_t renumber_every = 0);
 
 /// Every pair tested, O(N^2): the reference on small scenes.
 template <int Dim>
@@ -35,6 +36,9 @@ template <int Dim>
 /// threads.
 template <int Dim>
 [[nodiscard]] std::unique_ptr<Peer<Dim>> make_uniform_grid_peer(int threads);
+/// The grid on one thread over an array renumbered in its cell order every `renumber_every` steps.
+template <int Dim>
+[[nodiscard]] std::unique_ptr<Peer<Dim>> make_sorted_uniform_grid_peer(std::size_t renumber_every);
 
 /// The same grid over boxes fattened by `skin`, listing the pairs of fat boxes that overlap;
 /// a step tests only those, until a box leaves its fat box (a Verlet list).

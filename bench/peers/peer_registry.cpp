@@ -23,6 +23,7 @@ std::vector<PeerInfo> available_peers() {
         {"smb_paper", true, true},
         {"smb_skin", true, true},
         {"smb_detector", true, true},
+        {"smb_detector_sorted", true, true},
         {"smb_detector_2threads", true, true},
         {"smb_detector_skin", true, true},
         {"smb_detector_skin_2threads", true, true},
@@ -30,6 +31,7 @@ std::vector<PeerInfo> available_peers() {
         {"box_pruning", true, true},
         {"uniform_grid", true, true},
         {"uniform_grid_2threads", true, true},
+        {"uniform_grid_sorted", true, true},
         {"verlet_grid", true, true},
         {"uniform_grid_every_cell", true, true},
     };
@@ -66,6 +68,9 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
         return make_smb_world_peer<Dim>(settings);
     }
     if (name == "smb_detector") return make_smb_detector_peer<Dim>(DetectorSettings{});
+    // A simulation that renumbers its bodies in the detector's suggested order after the build
+    // and every 100 steps after it (LAMMPS sorts its atoms every 1000 by default).
+    if (name == "smb_detector_sorted") return make_smb_detector_peer<Dim>(DetectorSettings{}, 100);
     if (name == "smb_detector_2threads") {
         DetectorSettings settings;
         settings.threads = 2;
@@ -88,6 +93,7 @@ std::unique_ptr<Peer<Dim>> make_peer(std::string_view name) {
     if (name == "box_pruning") return make_box_pruning_peer<Dim>();
     if (name == "uniform_grid") return make_uniform_grid_peer<Dim>(1);
     if (name == "uniform_grid_2threads") return make_uniform_grid_peer<Dim>(2);
+    if (name == "uniform_grid_sorted") return make_sorted_uniform_grid_peer<Dim>(100);  // as smb_detector_sorted
     if (name == "verlet_grid") return make_verlet_grid_peer<Dim>(default_verlet_skin);
     // verlet_grid:SKIN, any other skin.
     if (name.starts_with("verlet_grid:")) {

@@ -12,11 +12,14 @@ namespace {
 /// smb::Detector as an array-based simulation would use it: its bodies in an array of its own,
 /// where a body keeps its index (swap-remove: smb/workload/swap_remove_mirror.hpp). The detection
 /// and turning the detector's indices into the scene's ids are measured; keeping the array is the
-/// simulation's own work, done in prepare().
+/// simulation's own work, done in prepare(). With `renumber_every` > 0 the simulation also
+/// renumbers its bodies in the detector's suggested order (Detector::suggested_order()) after
+/// the build and then every that many steps, timed with the detection that follows it.
 template <int Dim>
 class SmbDetectorPeer final : public Peer<Dim> {
 public:
-    explicit SmbDetectorPeer(const DetectorSettings& settings) : detector_(settings) {}
+    SmbDetectorPeer(const DetectorSettings& settings, std::size_t renumber_every)
+        : detector_(settings), renumber_every_(renumber_every) {}
 
     /// Untimed: a user's simulation keeps its bodies' boxes in its own array, moved in place and
     /// swap-removed, so the broad phase never copies them there; the scene hands over every box
@@ -25,11 +28,15 @@ public:
         mirror_.follow(step.removed_ids, step.ids.subspan(step.first_inserted), step.ids, step.boxes);
     }
 
-    void build(const SceneStep<Dim>& /*step*/, std::vector<Pair>& pairs) override { find_pairs(pairs); }
+    void build(const SceneStep<Dim>& /*step*/, std::vector<Pair>& pairs) override {
+        find_pairs(pairs);
+        if (renumber_every_ > 0) renumber();
+    }
 
     void step(const SceneStep<Dim>& /*step*/, std::vector<Pair>& pairs) override {
         find_pairs(pairs);
         ++steps_;
+        if (renumber_every_ > 0 && steps_ % renumber_every_ == 0) renumber();
         total_seconds_ += detector_.last_stats().total_seconds;
         bytes_held_ = detector_.bytes_held();
     }
@@ -50,8 +57,17 @@ private:
         for (Pair& pair : pairs) pair = ordered_pair(mirror_.id_at(pair.a), mirror_.id_at(pair.b));
     }
 
+    /// Timed with the detection before it: the boxes and their ids moved to the suggested order.
+    void renumber() {
+        const std::span<const std::uint32_t> order = detector_.suggested_order();
+        if (order.size() != mirror_.boxes().size()) return;
+        mirror_.renumber(order);
+        detector_.follow_suggested_order();
+    }
+
     workload::SwapRemoveMirror<BenchBox<Dim>> mirror_;
     Detector<float, Dim> detector_;
+    std::size_t renumber_every_ = 0;
     std::size_t steps_ = 0;
     double total_seconds_ = 0;
     std::size_t bytes_held_ = 0;
@@ -60,11 +76,11 @@ private:
 }  // namespace
 
 template <int Dim>
-std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const DetectorSettings& settings) {
-    return std::make_unique<SmbDetectorPeer<Dim>>(settings);
+std::unique_ptr<Peer<Dim>> make_smb_detector_peer(const DetectorSettings& settings, std::size_t renumber_every) {
+    return std::make_unique<SmbDetectorPeer<Dim>>(settings, renumber_every);
 }
 
-template std::unique_ptr<Peer<2>> make_smb_detector_peer<2>(const DetectorSettings&);
-template std::unique_ptr<Peer<3>> make_smb_detector_peer<3>(const DetectorSettings&);
+template std::unique_ptr<Peer<2>> make_smb_detector_peer<2>(const DetectorSettings&, std::size_t);
+template std::unique_ptr<Peer<3>> make_smb_detector_peer<3>(const DetectorSettings&, std::size_t);
 
 }  // namespace smb::bench

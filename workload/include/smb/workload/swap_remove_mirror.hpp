@@ -65,6 +65,23 @@ public:
         env_ids_.assign(env_ids.begin(), env_ids.end());
     }
 
+    /// Renumbers the bodies: index i now holds the body that was at index order[i] (a
+    /// permutation of every index).
+    void renumber(std::span<const std::uint32_t> order) {
+        std::vector<box_type> boxes(order.size());
+        std::vector<BoxId> ids(order.size());
+        std::vector<std::uint32_t> env_of_index(order.size());
+        for (std::size_t i = 0; i < order.size(); ++i) {
+            boxes[i] = boxes_[order[i]];
+            ids[i] = ids_[order[i]];
+            env_of_index[i] = env_of_index_[order[i]];
+            index_of_[env_of_index[i]] = static_cast<std::uint32_t>(i);
+        }
+        boxes_.swap(boxes);
+        ids_.swap(ids);
+        env_of_index_.swap(env_of_index);
+    }
+
     [[nodiscard]] std::span<const box_type> boxes() const noexcept { return boxes_; }
     [[nodiscard]] BoxId id_at(std::size_t index) const noexcept { return ids_[index]; }
     /// The id of the body at every index.
