@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// smb_check_grid_peers: the grid peers (one and two threads, and the Verlet-skin grid at several
-// skins) against testing every pair, on every scene family of the comparison in 2D and 3D, at
+// smb_check_grid_peers: the grid peers (one and two threads, the Verlet-skin grid at several
+// skins, and the grid and smb's Detector over arrays renumbered in their own orders) against
+// testing every pair, on every scene family of the comparison in 2D and 3D, at
 // each step of a short run with moves, insertions and removals: slow motion (Λ = 1e-3) and fast
 // (Λ = 0.05, where boxes leave their skins and many are inserted and removed). Exit status 1 on a
 // difference.
@@ -37,14 +38,18 @@ int check(const Case& one, double update_factor, std::size_t steps) {
     } catch (const std::invalid_argument&) {
         return 0;  // a family this build or this dimension lacks
     }
-    const std::vector<std::string> names = {"uniform_grid", "uniform_grid_2threads", "verlet_grid 0",
-                                            "verlet_grid 0.02", "verlet_grid 0.3"};
+    const std::vector<std::string> names = {"uniform_grid",       "uniform_grid_2threads", "verlet_grid 0",
+                                            "verlet_grid 0.02",   "verlet_grid 0.3",       "uniform_grid_sorted",
+                                            "smb_detector_sorted"};
     std::vector<std::unique_ptr<Peer<Dim>>> peers;
     peers.push_back(make_uniform_grid_peer<Dim>(1));
     peers.push_back(make_uniform_grid_peer<Dim>(2));
     peers.push_back(make_verlet_grid_peer<Dim>(0.0f));
     peers.push_back(make_verlet_grid_peer<Dim>(0.02f));
     peers.push_back(make_verlet_grid_peer<Dim>(0.3f));
+    // The arrays renumbered every third step, so that each run renumbers several times.
+    peers.push_back(make_sorted_uniform_grid_peer<Dim>(3));
+    peers.push_back(make_smb_detector_peer<Dim>(DetectorSettings{}, 3));
     auto reference = make_brute_force_peer<Dim>();
     std::vector<Pair> expected, found;
     int failures = 0;
@@ -57,6 +62,7 @@ int check(const Case& one, double update_factor, std::size_t steps) {
         std::sort(expected.begin(), expected.end());
         for (std::size_t p = 0; p < peers.size(); ++p) {
             found.clear();
+            peers[p]->prepare(step);
             if (index == 0)
                 peers[p]->build(step, found);
             else
