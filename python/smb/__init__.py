@@ -176,6 +176,22 @@ class Detector(_Readouts):
         pairs, margin, available = self._impl.candidates()
         return CandidatePairs(pairs, margin, available)
 
+    def suggested_order(self):
+        """The indices of the last detection's boxes in the order the next one reads them.
+
+        An int64 array holding every index once (cell by cell, each column in x order), after a
+        detection over the whole array without the skin, filters that split it or a periodic
+        domain; empty otherwise. Renumber every per-body array by it (new index i holds the body
+        at order[i], e.g. boxes = boxes[order]) and call follow_suggested_order(): the following
+        detections then read the array as one stream. Events by index see renumbered bodies as
+        other bodies.
+        """
+        return self._impl.suggested_order()
+
+    def follow_suggested_order(self):
+        """Tells the detector that the bodies were renumbered by suggested_order()."""
+        self._impl.follow_suggested_order()
+
     def detect_periodic(self, boxes, lo, hi, *, axes=None, sort=False):
         """Pairs in a periodic domain: (pairs, shifts), (P, 2) int64 and (P, dim) int32.
 

@@ -3,9 +3,11 @@
 
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -133,6 +135,20 @@ void bind_detector(py::module_& module) {
              py::arg("masks") = py::none(), py::arg("static") = py::none(), py::arg("sort") = false,
              py::arg("out") = py::none())
         .def("candidates", &candidates<Real, Dim>)
+        .def("suggested_order",
+             [](const Handle& self) {
+                 const BusyScope busy(self.busy, "this Detector");
+                 const std::span<const std::uint32_t> order = self.detector.suggested_order();
+                 py::array_t<std::int64_t> out(static_cast<py::ssize_t>(order.size()));
+                 std::int64_t* written = out.mutable_data();
+                 for (std::size_t i = 0; i < order.size(); ++i) written[i] = order[i];
+                 return out;
+             })
+        .def("follow_suggested_order",
+             [](Handle& self) {
+                 const BusyScope busy(self.busy, "this Detector");
+                 self.detector.follow_suggested_order();
+             })
         .def("detect_periodic", &detect_periodic<Real, Dim>, py::arg("boxes"), py::arg("lo"), py::arg("hi"),
              py::arg("axes") = py::none(), py::arg("sort") = false)
         .def_property_readonly("begun",

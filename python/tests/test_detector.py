@@ -235,3 +235,25 @@ def test_profile_is_zero_unless_asked_for(cls):
             assert phases["cells"] == 0
             assert all(seconds == 0 for seconds in phases["level_seconds"])
         assert broad_phase.stats["boxes"] == len(boxes)
+
+
+@pytest.mark.parametrize("dim", DIMS)
+@pytest.mark.parametrize("dtype", DTYPES)
+def test_renumbering_by_the_suggested_order(dim, dtype):
+    rng = np.random.default_rng(11)
+    detector = smb.Detector(dim, dtype)
+    boxes = random_boxes(rng, 800, dim, dtype)
+    uids = np.arange(len(boxes))  # follows each body through the renumberings
+    assert detector.suggested_order().size == 0
+    for step in range(12):
+        boxes = boxes + (rng.integers(-1, 2, size=(len(boxes), 1, dim)) / 4.0).astype(dtype)
+        pairs = detector.detect(boxes)
+        assert as_set(np.sort(uids[pairs], axis=1)) == as_set(np.sort(uids[brute_pairs(boxes)], axis=1))
+        order = detector.suggested_order()
+        assert order.dtype == np.int64
+        assert np.array_equal(np.sort(order), np.arange(len(boxes)))
+        if step % 3 == 0:
+            boxes, uids = boxes[order], uids[order]
+            detector.follow_suggested_order()
+    detector.detect_periodic(boxes, [-50.0] * dim, [50.0] * dim)
+    assert detector.suggested_order().size == 0
