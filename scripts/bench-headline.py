@@ -42,7 +42,8 @@ import time
 ONE_THREAD = ["uniform_grid", "smb", "smb_detector"]
 SCENES = [
     ("paper", 3, 1e-3, "paper", ["uniform_grid", "uniform_grid_2threads", "smb", "smb_double", "smb_detector",
-                                 "smb_2threads", "smb_detector_2threads"]),
+                                 "smb_2threads", "smb_detector_2threads", "uniform_grid_sorted",
+                                 "smb_detector_sorted"]),
     ("paper", 3, 1e-1, "paper", ["uniform_grid", "smb", "smb_double", "smb_detector"]),
     ("paper", 3, 1e-5, "paper", ["uniform_grid", "verlet_grid", "smb_detector_skin", "bullet_dbvt"]),
     ("paper", 2, 1e-3, "paper", ONE_THREAD),
@@ -56,7 +57,9 @@ LABEL = {"uniform_grid": "uniform grid", "uniform_grid_2threads": "uniform grid,
          "smb_detector": "smb Detector", "smb_2threads": "smb World, 2 threads",
          "smb_detector_2threads": "smb Detector, 2 threads", "smb_detector_skin": "smb Detector, skin 0.1",
          "bullet_dbvt": "Bullet btDbvtBroadphase", "box2d_dynamic_tree": "Box2D b2DynamicTree",
-         "uniform_grid_every_cell": "textbook grid (every cell)"}
+         "uniform_grid_every_cell": "textbook grid (every cell)",
+         "uniform_grid_sorted": "uniform grid, array sorted in its order",
+         "smb_detector_sorted": "smb Detector, array sorted in its order"}
 TIMES = ["first_step_s", "early_median_s", "steady_median_s", "median_step_s", "first_step_cpu_s", "early_median_cpu_s",
          "steady_median_cpu_s", "wall_s"]
 FIELDS = ["family", "dim", "lambda", "boxes", "steps", "method", "first_step_ms", "early_median_ms", "steady_median_ms",

@@ -3,7 +3,8 @@
 # Builds smb_compare in release mode and runs the headline comparison (scripts/bench-headline.py):
 # the paper's workload at 1M boxes in 3D and 100k in 2D, and the other scene families at 300k in
 # 3D and 100k in 2D, smb against the uniform grid (one and two threads), the Verlet-skin grid,
-# Bullet's DBVT and Box2D's tree, 40 steps, the build step and the steady state apart.
+# Bullet's DBVT and Box2D's tree, and at 3D 1M the grid and the Detector over arrays renumbered in
+# their own orders; 40 steps, the build step and the steady state apart.
 #   scripts/bench-headline.sh [name] [build-dir] [more options of bench-headline.py]
 # Results: bench/results/cpp-2core/<name>.csv, .jsonl and .md. About 25 minutes on 2 idle cores.
 set -eu
