@@ -50,7 +50,7 @@ public:
     }
     void step(const SceneStep<Dim>& /*step*/, std::vector<Pair>& pairs) override {
         find_pairs(pairs);
-        if (++steps_ % renumber_every_ == 0) renumber();
+        if (renumber_every_ > 0 && ++steps_ % renumber_every_ == 0) renumber();
     }
 
 private:

@@ -117,11 +117,11 @@ public:
             exact_.follow_own_order();
     }
 
-    /// Slots the pipeline in use lists.
     /// The order the last detection left: every slot once, cell by cell.
     [[nodiscard]] std::span<const Slot> order() const noexcept {
         return uses_rounded() ? rounded_.order() : exact_.order();
     }
+    /// Slots the pipeline in use lists.
     [[nodiscard]] std::size_t listed() const noexcept { return uses_rounded() ? rounded_.listed() : exact_.listed(); }
 
     /// Gives the pipelines' memory back (their cuts and order too); keeps the judgement.

@@ -66,8 +66,10 @@ public:
     }
 
     /// Renumbers the bodies: index i now holds the body that was at index order[i] (a
-    /// permutation of every index).
+    /// permutation of every index). The swap-removes of the last follow() are forgotten: they
+    /// name indices from before.
     void renumber(std::span<const std::uint32_t> order) {
+        swaps_.clear();
         std::vector<box_type> boxes(order.size());
         std::vector<BoxId> ids(order.size());
         std::vector<std::uint32_t> env_of_index(order.size());
