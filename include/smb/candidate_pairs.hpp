@@ -32,10 +32,11 @@ namespace smb {
 /// `available` is false, and `pairs` empty, when the last detection did not run on the skin
 /// list: no skin (DetectorSettings::skin == 0); no detect() since construction or clear(); an
 /// empty array; a detect() that threw; a detection with filters that left some boxes out
-/// (their indices were not the caller's); a periodic detection (smb/periodic.hpp); the detector holding doubles for a scene that floats
-/// cannot resolve (Detector::last_precision()); and the detections where it stepped aside from
-/// the skin because the boxes moved farther than the skin, or the fat boxes made more than
-/// about 32 candidates per box (DetectorSettings::skin). The caller then falls back on the
+/// (their indices were not the caller's); a periodic detection (smb/periodic.hpp); the
+/// detector holding doubles for a scene that floats cannot resolve (Detector::last_precision());
+/// and the detections where it stepped aside from the skin because the boxes moved farther
+/// than the skin, or the fat boxes made more than about 32 candidates per box
+/// (DetectorSettings::skin). The caller then falls back on the
 /// detection's pairs, which are exact in every case.
 struct CandidatePairs {
     std::span<const Pair> pairs;

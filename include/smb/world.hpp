@@ -184,7 +184,10 @@ public:
     /// Region queries and ray casts (docs/queries.md). They answer for the boxes the world holds
     /// now, with every change made so far: they use a BoxIndex over the world's boxes, rebuilt
     /// (O(N)) by the first query after a change of the boxes (insert, update, remove, assign,
-    /// clear), and reused until the next one; detections, filters and statics keep it. Results and errors as BoxIndex: each box overlapping `box`, by id.
+    /// clear), and reused until the next one; detections, filters and statics keep it. Results
+    /// and errors as BoxIndex.
+
+    /// Each box overlapping `box`, by id.
     void query(const box_type& box, std::vector<BoxId>& out);
     /// Every (query index, id) with the box `id` overlapping queries[index], sorted by index.
     void query(std::span<const box_type> queries, std::vector<QueryHit>& out);

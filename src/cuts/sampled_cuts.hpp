@@ -10,8 +10,8 @@
 // planes cut before the copy, the boxes are copied grouped by column (CellOrder::copy_by_column),
 // each column in one run, as a later detection has it. The sample makes cutting cheap: two
 // passes over a quarter of the boxes at 1M in 3D, each kept only as its interval on the axis
-// being cut, against a pass over every box per level. Its planes are as even as the levels' own sampled cuts (kSamplePerSegment
-// keys per segment); each group's band is set from the sample's counts scaled to the boxes,
+// being cut, against a pass over every box per level. Its planes are as even as the levels' own
+// sampled cuts (kSamplePerSegment keys per segment); each group's band is set from the sample's counts scaled to the boxes,
 // and a group whose real counts leave it is cut again by the levels from all its entries.
 // Exactness never depends on the planes (cut_tree.hpp), only speed does.
 
