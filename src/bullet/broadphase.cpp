@@ -147,12 +147,6 @@ void Broadphase::Impl::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMi
     mark_changed(id);
 }
 
-void Broadphase::Impl::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const {
-    const Proxy& own_proxy = own(proxy);
-    aabbMin = own_proxy.m_aabbMin;
-    aabbMax = own_proxy.m_aabbMax;
-}
-
 void Broadphase::Impl::sync_filters() {
     // Every live proxy's bits, at every step: the liveness and the filter held are read from
     // arrays by id, so that a proxy whose bits did not change costs one cache line of its own
@@ -247,11 +241,8 @@ void Broadphase::Impl::calculateOverlappingPairs(btDispatcher* dispatcher) {
         tested = true;
         reconcile_candidates(dispatcher);
         index_current_ = false;
-        constexpr auto listed = static_cast<std::uint8_t>(~(detail::fresh_mark | detail::stale_mark));
-        for (const std::uint32_t id : fresh_) marks_[id] &= listed;
-        for (const std::uint32_t id : stale_) marks_[id] &= listed;
-        fresh_.clear();
-        stale_.clear();
+        unlist(fresh_, detail::fresh_mark);
+        unlist(stale_, detail::stale_mark);
         // The detection named the ids destroyed before it for the last time.
         free_ids_.insert(free_ids_.end(), retired_ids_.begin(),
                          retired_ids_.begin() + static_cast<std::ptrdiff_t>(retired_before));
@@ -261,8 +252,7 @@ void Broadphase::Impl::calculateOverlappingPairs(btDispatcher* dispatcher) {
         tested = true;
     }
     if (!tested && (!changed_ids_.empty() || test_all_)) test_candidates(dispatcher);
-    for (const std::uint32_t id : changed_ids_) marks_[id] &= static_cast<std::uint8_t>(~detail::changed_mark);
-    changed_ids_.clear();
+    unlist(changed_ids_, detail::changed_mark);
     test_all_ = false;
     settle_restless_statics();
     ++step_;
@@ -292,7 +282,9 @@ void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, con
 }
 
 void Broadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const {
-    impl_->getAabb(proxy, aabbMin, aabbMax);
+    const Impl::Proxy& own_proxy = impl_->own(proxy);
+    aabbMin = own_proxy.m_aabbMin;
+    aabbMax = own_proxy.m_aabbMax;
 }
 
 void Broadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
@@ -306,9 +298,9 @@ void Broadphase::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, bt
 
 void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) { impl_->calculateOverlappingPairs(dispatcher); }
 
-btOverlappingPairCache* Broadphase::getOverlappingPairCache() { return impl_->cache(); }
+btOverlappingPairCache* Broadphase::getOverlappingPairCache() { return impl_->cache_; }
 
-const btOverlappingPairCache* Broadphase::getOverlappingPairCache() const { return impl_->cache(); }
+const btOverlappingPairCache* Broadphase::getOverlappingPairCache() const { return impl_->cache_; }
 
 void Broadphase::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const {
     impl_->getBroadphaseAabb(aabbMin, aabbMax);
@@ -318,8 +310,8 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) { impl_->resetPool(); }
 
 void Broadphase::printStats() { impl_->printStats(); }
 
-std::size_t Broadphase::size() const noexcept { return impl_->size(); }
+std::size_t Broadphase::size() const noexcept { return impl_->live_; }
 
-const World<float, 3>& Broadphase::world() const noexcept { return impl_->world(); }
+const World<float, 3>& Broadphase::world() const noexcept { return impl_->world_; }
 
 }  // namespace smb::bullet

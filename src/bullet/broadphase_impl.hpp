@@ -86,6 +86,12 @@ struct BroadphasePool {
     /// A proxy or a filter changed since the last detection: the next one detects again (fat
     /// boxes alone are followed through fresh_).
     bool changed_ = true;
+
+    /// Empties `ids` (fresh_, stale_, moved_ or changed_ids_), clearing their `mark` in marks_.
+    void unlist(std::vector<std::uint32_t>& ids, std::uint8_t mark) noexcept {
+        for (const std::uint32_t id : ids) marks_[id] &= static_cast<std::uint8_t>(~mark);
+        ids.clear();
+    }
 };
 
 class Broadphase::Impl : public BroadphasePool {
@@ -97,17 +103,13 @@ public:
                                    int collisionFilterGroup, int collisionFilterMask);
     void destroyProxy(btBroadphaseProxy* proxy, btDispatcher* dispatcher);
     void setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax);
-    void getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const;
     void rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
                  const btVector3& aabbMin, const btVector3& aabbMax);
     void aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, btBroadphaseAabbCallback& callback);
     void calculateOverlappingPairs(btDispatcher* dispatcher);
-    [[nodiscard]] btOverlappingPairCache* cache() const noexcept { return cache_; }
     void getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const;
     void resetPool();
     void printStats();
-    [[nodiscard]] std::size_t size() const noexcept { return live_; }
-    [[nodiscard]] const World<float, 3>& world() const noexcept { return world_; }
 
     struct Proxy;
 
@@ -131,6 +133,9 @@ public:
     /// Marks the proxy's box changed since the last calculateOverlappingPairs.
     void mark_changed(std::uint32_t id);
     void settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher);
+    /// Removes the candidate's pair from the cache if it holds it. A callback of the cache may
+    /// have destroyed a proxy on the way, its pairs with it.
+    void drop_if_held(const Candidate& candidate, btDispatcher* dispatcher);
     /// After a detection: sorts pair_keys_ and makes the candidates exactly those pairs, in
     /// order: those whose fat boxes stopped overlapping leave (and the cache, if it held them),
     /// those that began join, those that stay keep what the cache holds; every candidate is

@@ -39,8 +39,7 @@ void Broadphase::Impl::build_index() {
         index_boxes_.push_back(fat_boxes_[id]);
     }
     index_.build(index_ids_, index_boxes_);
-    for (const std::uint32_t id : stale_) marks_[id] &= static_cast<std::uint8_t>(~detail::stale_mark);
-    stale_.clear();
+    unlist(stale_, detail::stale_mark);
     index_current_ = true;
 }
 
@@ -89,11 +88,7 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
         if (((marks_[candidate.a] | marks_[candidate.b]) & detail::fresh_mark) != 0) {
             const auto at = std::lower_bound(found_.begin(), found_.end(), candidate, comes_before);
             if (at == found_.end() || !same_pair(*at, candidate)) {
-                if (candidate.held != Held::held) continue;
-                // A callback of the cache may have destroyed a proxy on the way, its pairs with it.
-                Proxy* a = live(candidate.a);
-                Proxy* b = live(candidate.b);
-                if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+                drop_if_held(candidate, dispatcher);
                 continue;
             }
             found_seen_[static_cast<std::size_t>(at - found_.begin())] = 1;
@@ -109,8 +104,7 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
         test_new_candidate(candidates_.back(), dispatcher);
         candidates_sorted_ = false;
     }
-    for (const std::uint32_t id : fresh_) marks_[id] &= static_cast<std::uint8_t>(~detail::fresh_mark);
-    fresh_.clear();
+    unlist(fresh_, detail::fresh_mark);
 }
 
 void Broadphase::Impl::reconcile_candidates(btDispatcher* dispatcher) {
@@ -141,10 +135,7 @@ void Broadphase::Impl::reconcile_candidates(btDispatcher* dispatcher) {
             keep(candidate);
             continue;
         }
-        if (candidate.held != Held::held) continue;
-        Proxy* a = live(candidate.a);
-        Proxy* b = live(candidate.b);
-        if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+        drop_if_held(candidate, dispatcher);
     }
     while (next != end) add(*next++);
     candidates_.swap(merged_);

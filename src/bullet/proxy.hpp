@@ -49,49 +49,6 @@ inline constexpr std::uint8_t alive_mark = 16;
                              static_cast<int>(a.min[1] <= b.max[1]) & static_cast<int>(b.min[1] <= a.max[1]) &
                              static_cast<int>(a.min[2] <= b.max[2]) & static_cast<int>(b.min[2] <= a.max[2]));
 }
-}  // namespace detail
-
-// Here, inline: setAabb asks it for every proxy at every step.
-inline Broadphase::Impl::Proxy& Broadphase::Impl::own(const btBroadphaseProxy* proxy) const {
-    if (proxy != nullptr && proxy->m_uniqueId >= 0) {
-        const auto id = static_cast<std::size_t>(proxy->m_uniqueId);
-        if (id < slots_.size() && slots_[id].get() == proxy && slots_[id]->alive) return *slots_[id];
-    }
-    detail::throw_unknown_proxy();
-}
-
-// Here, inline: every pass over the candidates and the proxies asks it.
-inline Broadphase::Impl::Proxy* Broadphase::Impl::live(BoxId id) const noexcept {
-    if (id >= slots_.size()) return nullptr;
-    Proxy* proxy = slots_[id].get();
-    return proxy != nullptr && proxy->alive ? proxy : nullptr;
-}
-
-// Here, inline: setAabb calls it for every box that changed.
-inline void Broadphase::Impl::mark_changed(std::uint32_t id) {
-    if ((marks_[id] & detail::changed_mark) != 0) return;
-    marks_[id] |= detail::changed_mark;
-    changed_ids_.push_back(id);
-}
-
-// Here, inline: the passes over the candidates call it for every one.
-inline void Broadphase::Impl::test_candidate(Candidate& candidate, btDispatcher* dispatcher) {
-    // Every calculateOverlappingPairs leaves each candidate's standing as its boxes are: while
-    // neither box changes, it stands (in a pile partly asleep, most candidates).
-    if (!test_all_ && ((marks_[candidate.a] | marks_[candidate.b]) & detail::changed_mark) == 0) return;
-    test_new_candidate(candidate, dispatcher);
-}
-
-// Here, inline: the passes over the candidates call it for every one they find anew.
-inline void Broadphase::Impl::test_new_candidate(Candidate& candidate, btDispatcher* dispatcher) {
-    const bool overlap = detail::overlaps_branchless(boxes_[candidate.a], boxes_[candidate.b]);
-    // Most candidates stay as they were: apart and still apart, or held (or refused) and still
-    // overlapping. A filter callback is asked at every step.
-    if (!callback_mode_ && overlap == (candidate.held != Held::apart)) return;
-    settle_candidate(candidate, overlap, dispatcher);
-}
-
-namespace detail {
 
 /// Static and kinematic objects as btCollisionWorld files them (group StaticFilter, mask every bit
 /// but StaticFilter), and any proxy whose group holds only StaticFilter and KinematicFilter bits
@@ -145,4 +102,41 @@ inline void erase_partner(std::vector<std::uint32_t>& partners, std::uint32_t id
 [[nodiscard]] Box<float, 3> checked_box(const btVector3& min, const btVector3& max, const char* what);
 
 }  // namespace detail
+
+// Inline: setAabb and the passes over the proxies and the candidates call these for every one.
+inline Broadphase::Impl::Proxy& Broadphase::Impl::own(const btBroadphaseProxy* proxy) const {
+    if (proxy != nullptr && proxy->m_uniqueId >= 0) {
+        const auto id = static_cast<std::size_t>(proxy->m_uniqueId);
+        if (id < slots_.size() && slots_[id].get() == proxy && slots_[id]->alive) return *slots_[id];
+    }
+    detail::throw_unknown_proxy();
+}
+
+inline Broadphase::Impl::Proxy* Broadphase::Impl::live(BoxId id) const noexcept {
+    if (id >= slots_.size()) return nullptr;
+    Proxy* proxy = slots_[id].get();
+    return proxy != nullptr && proxy->alive ? proxy : nullptr;
+}
+
+inline void Broadphase::Impl::mark_changed(std::uint32_t id) {
+    if ((marks_[id] & detail::changed_mark) != 0) return;
+    marks_[id] |= detail::changed_mark;
+    changed_ids_.push_back(id);
+}
+
+inline void Broadphase::Impl::test_candidate(Candidate& candidate, btDispatcher* dispatcher) {
+    // Every calculateOverlappingPairs leaves each candidate's standing as its boxes are: while
+    // neither box changes, it stands (in a pile partly asleep, most candidates).
+    if (!test_all_ && ((marks_[candidate.a] | marks_[candidate.b]) & detail::changed_mark) == 0) return;
+    test_new_candidate(candidate, dispatcher);
+}
+
+inline void Broadphase::Impl::test_new_candidate(Candidate& candidate, btDispatcher* dispatcher) {
+    const bool overlap = detail::overlaps_branchless(boxes_[candidate.a], boxes_[candidate.b]);
+    // Most candidates stay as they were: apart and still apart, or held (or refused) and still
+    // overlapping. A filter callback is asked at every step.
+    if (!callback_mode_ && overlap == (candidate.held != Held::apart)) return;
+    settle_candidate(candidate, overlap, dispatcher);
+}
+
 }  // namespace smb::bullet

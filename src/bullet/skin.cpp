@@ -39,8 +39,7 @@ void Broadphase::Impl::flush_moves() {
         move_boxes_.push_back(detail::grown(box, next_skin(id)));
     }
     if (!move_ids_.empty()) world_.update(move_ids_, move_boxes_);
-    for (const std::uint32_t id : moved_) marks_[id] &= static_cast<std::uint8_t>(~detail::moved_mark);
-    moved_.clear();
+    unlist(moved_, detail::moved_mark);
     for (std::size_t i = 0; i < move_ids_.size(); ++i) {
         const auto id = static_cast<std::uint32_t>(move_ids_[i]);
         fat_boxes_[id] = move_boxes_[i];
@@ -87,6 +86,13 @@ void Broadphase::Impl::drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher) {
     cache_->removeOverlappingPair(&a, &b, dispatcher);
 }
 
+void Broadphase::Impl::drop_if_held(const Candidate& candidate, btDispatcher* dispatcher) {
+    if (candidate.held != Held::held) return;
+    Proxy* a = live(candidate.a);
+    Proxy* b = live(candidate.b);
+    if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+}
+
 void Broadphase::Impl::test_candidates(btDispatcher* dispatcher) {
     for (Candidate& candidate : candidates_) test_candidate(candidate, dispatcher);
 }
@@ -97,11 +103,7 @@ void Broadphase::Impl::settle_candidate(Candidate& candidate, bool overlap, btDi
     // pairs left the cache with it, and a proxy created has no candidate before the next
     // detection. The candidates themselves change only in the passes that call this.
     if (!overlap) {
-        if (candidate.held == Held::held) {
-            Proxy* a = live(candidate.a);
-            Proxy* b = live(candidate.b);
-            if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
-        }
+        drop_if_held(candidate, dispatcher);
         candidate.held = Held::apart;
         return;
     }
