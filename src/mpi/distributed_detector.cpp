@@ -3,17 +3,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <numeric>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "axial_regions.hpp"
-#include "collective_checks.hpp"
 #include "core/shortest_number.hpp"
 #include "distributed_id_set.hpp"
 #include "exchange.hpp"
 #include "region_store.hpp"
 #include "sent_boxes.hpp"
 #include "smb/detector.hpp"
+#include "smb/errors.hpp"
 
 namespace smb::mpi {
 
@@ -39,6 +42,51 @@ void sort_by_rank(const std::vector<Target>& targets, int ranks, std::vector<Rec
     send.resize(targets.size());
     for (const Target& target : targets)
         send[static_cast<std::size_t>(fill[static_cast<std::size_t>(target.first)]++)] = record_of(target.second);
+}
+
+/// What each rank found in its own input, to be summed over the ranks.
+struct LocalInputFindings {
+    bool lengths_differ = false;    ///< ids and boxes of different lengths
+    bool has_invalid_box = false;   ///< a box with NaN, infinity or min > max
+    BoxId smallest_invalid_id = 0;  ///< the smallest id of such a box
+    bool ids_changed = false;       ///< the ids differ from the last step's
+};
+
+/// What the ranks found together.
+struct GlobalInputFindings {
+    bool ids_changed_anywhere = false;
+    unsigned long long total_boxes = 0;
+};
+
+/// Sums the findings (and `region_counts`, in place, in the same reduction) over the ranks, and
+/// throws on every rank, with the same message, ArgumentError or InvalidBoxError when any
+/// rank's input was bad: all ranks agree on it before any exchange, so that bad input anywhere
+/// makes every rank throw instead of leaving some in a collective. Collective.
+GlobalInputFindings agree_on_input(MPI_Comm comm, const LocalInputFindings& local, std::size_t local_boxes,
+                                   std::span<unsigned long long> region_counts) {
+    enum : std::size_t { lengths_differ, invalid_box, ids_changed, total_boxes, header };
+    std::vector<unsigned long long> sums(header + region_counts.size(), 0);
+    sums[lengths_differ] = local.lengths_differ ? 1 : 0;
+    sums[invalid_box] = local.has_invalid_box ? 1 : 0;
+    sums[ids_changed] = local.ids_changed ? 1 : 0;
+    sums[total_boxes] = local_boxes;
+    std::copy(region_counts.begin(), region_counts.end(), sums.begin() + header);
+    MPI_Allreduce(MPI_IN_PLACE, sums.data(), static_cast<int>(sums.size()), MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+    if (sums[lengths_differ] != 0) {
+        throw ArgumentError("DistributedDetector::detect: ids and boxes differ in length on " +
+                            std::to_string(sums[lengths_differ]) + " rank(s)");
+    }
+    if (sums[invalid_box] != 0) {
+        // The smallest of the ids that the ranks name (each rank names its own, or none).
+        unsigned long long id =
+            local.has_invalid_box ? local.smallest_invalid_id : std::numeric_limits<unsigned long long>::max();
+        MPI_Allreduce(MPI_IN_PLACE, &id, 1, MPI_UNSIGNED_LONG_LONG, MPI_MIN, comm);
+        throw InvalidBoxError("DistributedDetector::detect: box " + std::to_string(id) +
+                              " is invalid (a NaN or infinite coordinate, or min > max); " +
+                              std::to_string(sums[invalid_box]) + " rank(s) hold invalid boxes");
+    }
+    std::copy(sums.begin() + header, sums.end(), region_counts.begin());
+    return {sums[ids_changed] != 0, sums[total_boxes]};
 }
 
 template <std::floating_point Real, int Dim>
@@ -208,10 +256,8 @@ void DistributedState<Real, Dim>::send_box_changes(std::span<const box_type> box
     sort_by_rank(upsert_targets_, ranks_, upsert_send_, upsert_counts, [&](std::size_t k) {
         return Record{sorted_ids_[k], boxes[order_[k]]};
     });
-    all_to_all(comm_, removal_send_, removal_counts, removals_received, removals_received_);
-    all_to_all(comm_, upsert_send_, upsert_counts, upserts_received, upserts_received_);
-    stats_.box_bytes_sent =
-        bytes_to_others<BoxId>(removal_counts, rank_) + bytes_to_others<Record>(upsert_counts, rank_);
+    stats_.box_bytes_sent = all_to_all(comm_, removal_send_, removal_counts, removals_received, removals_received_);
+    stats_.box_bytes_sent += all_to_all(comm_, upsert_send_, upsert_counts, upserts_received, upserts_received_);
     receive_box_changes(removals_received_, upserts_received_, upserts_received);
 }
 
@@ -267,8 +313,7 @@ void DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
         }
     }
     std::vector<int> receive_counts;
-    all_to_all(comm_, pair_send_, counts, receive_counts, pairs_received_);
-    stats_.pair_bytes_sent = bytes_to_others<Pair>(counts, rank_);
+    stats_.pair_bytes_sent = all_to_all(comm_, pair_send_, counts, receive_counts, pairs_received_);
 }
 
 template <std::floating_point Real, int Dim>
