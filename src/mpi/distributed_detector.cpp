@@ -228,25 +228,24 @@ void DistributedState<Real, Dim>::send_box_changes(std::span<const box_type> box
         for (int region : sent_.regions_of(last)) removal_targets_.push_back({region, sent_.ids[last]});
     };
     next_sent_.clear();
-    std::vector<int>& here = here_;
     std::size_t last = 0;  // both in id order: a merge
     for (std::size_t k = 0; k < order_.size(); ++k) {
         const BoxId id = sorted_ids_[k];
         const box_type& box = boxes[order_[k]];
-        here.clear();
-        regions_.regions_of(box, here);
+        here_.clear();
+        regions_.regions_of(box, here_);
         while (last < sent_.size() && sent_.ids[last] < id) remove_everywhere(last++);
         const bool known = last < sent_.size() && sent_.ids[last] == id;
         const std::span<const int> before = known ? sent_.regions_of(last) : std::span<const int>();
         const bool moved = !known || !(sent_.boxes[last] == box);
-        for (int region : here) {
+        for (int region : here_) {
             if (moved || !contains(before, region)) upsert_targets_.push_back({region, k});
         }
         for (int region : before) {
-            if (!contains(here, region)) removal_targets_.push_back({region, id});
+            if (!contains(here_, region)) removal_targets_.push_back({region, id});
         }
         if (known) ++last;
-        next_sent_.add(id, box, here);
+        next_sent_.add(id, box, here_);
     }
     while (last < sent_.size()) remove_everywhere(last++);
     std::swap(sent_, next_sent_);
@@ -285,6 +284,7 @@ void DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
     std::vector<std::pair<int, Pair>>& kept = kept_pairs_;
     kept.clear();
     const bool both = settings_.hand_off == PairHandOff::both_holders;
+    std::size_t found = 0;
     const auto start = std::chrono::steady_clock::now();
     // The sink streams the pairs, so no pair limit applies here: a limit reached on one rank
     // alone would leave the others waiting in the exchange.
@@ -299,19 +299,13 @@ void DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
             const Pair pair{region_ids[first], region_ids[second]};
             kept.push_back({holders[first], pair});
             if (both && holders[second] != holders[first]) kept.push_back({holders[second], pair});
+            ++found;
         }
     });
     stats_.local_detect_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats_.pairs_found = found;
     std::vector<int> counts;
     sort_by_rank(kept, ranks_, pair_send_, counts, [](const Pair& pair) { return pair; });
-    stats_.pairs_found = both ? 0 : kept.size();
-    if (both) {
-        for (std::size_t i = 0; i < kept.size(); ++i) {
-            // The second copy of a pair follows its first, addressed to the other holder.
-            if (i + 1 < kept.size() && kept[i + 1].second == kept[i].second) ++i;
-            ++stats_.pairs_found;
-        }
-    }
     std::vector<int> receive_counts;
     stats_.pair_bytes_sent = all_to_all(comm_, pair_send_, counts, receive_counts, pairs_received_);
 }
