@@ -81,6 +81,7 @@ template <class X, class Y>
 /// pairs themselves fit in a core's L2 cache.
 inline constexpr std::size_t kPairsPerPartition = tuning::pairs_per_partition;
 inline constexpr int kMaxPartitionBits = 24;
+inline constexpr std::size_t kPairsPerThread = tuning::event_pairs_per_thread;
 
 /// The partition bits for `count` pairs: the fewest that leave about kPairsPerPartition each.
 [[nodiscard]] inline int partition_bits_for(std::size_t count) noexcept {
@@ -162,7 +163,6 @@ struct PairPartitions {
         if (source.size() >= UINT32_MAX)
             throw ArgumentError("PairEvents::update: at most " + std::to_string(UINT32_MAX - 1) + " pairs");
         const int new_bits = partition_bits_for(source.size());
-        constexpr std::size_t kPairsPerThread = tuning::event_pairs_per_thread;
         if ((threads <= 1 || source.size() < 2 * kPairsPerThread) && assign_gapped(source, new_bits, watch)) return;
         assign_counted(source, threads, new_bits, watch);
     }
@@ -249,7 +249,6 @@ private:
     void assign_counted(std::span<const Pair> source, int threads, int new_bits, const Watch& watch) {
         const std::size_t parts = std::size_t{1} << new_bits;
         const std::size_t n = source.size();
-        constexpr std::size_t kPairsPerThread = tuning::event_pairs_per_thread;
         const int team = std::max(1, std::min(threads, static_cast<int>(n / kPairsPerThread)));
         const auto share = [&](int t) {
             return std::pair{n * static_cast<std::size_t>(t) / static_cast<std::size_t>(team),
