@@ -29,21 +29,6 @@ struct BoxRecord {
     Box<Real, Dim> box;
 };
 
-/// Sorts `targets`, (rank, what) each, by rank into `send` as record_of(what) (a counting sort:
-/// a rank's records lie together, in the order of the targets), and counts[r] how many go to
-/// rank r (region r is rank r's), ready for all_to_all.
-template <class Target, class Record, class RecordOf>
-void sort_by_rank(const std::vector<Target>& targets, int ranks, std::vector<Record>& send, std::vector<int>& counts,
-                  RecordOf record_of) {
-    counts.assign(static_cast<std::size_t>(ranks), 0);
-    for (const Target& target : targets) ++counts[static_cast<std::size_t>(target.first)];
-    std::vector<int> fill(counts.size(), 0);
-    std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
-    send.resize(targets.size());
-    for (const Target& target : targets)
-        send[static_cast<std::size_t>(fill[static_cast<std::size_t>(target.first)]++)] = record_of(target.second);
-}
-
 /// What each rank found in its own input, to be summed over the ranks.
 struct LocalInputFindings {
     bool lengths_differ = false;    ///< ids and boxes of different lengths

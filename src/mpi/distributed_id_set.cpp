@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
-#include <numeric>
 #include <string>
+#include <utility>
 
 #include "exchange.hpp"
 #include "smb/errors.hpp"
@@ -28,15 +28,12 @@ std::uint64_t mix(std::uint64_t x) noexcept {
 /// `ids` to the ranks their hash names; returns what arrived here, and adds the bytes sent.
 std::vector<BoxId> send_to_hash_ranks(MPI_Comm comm, const std::vector<BoxId>& ids, int ranks,
                                       std::size_t& bytes_sent) {
-    const auto hash_rank = [ranks](BoxId id) { return mix(id) % static_cast<std::uint64_t>(ranks); };
-    std::vector<int> counts(static_cast<std::size_t>(ranks), 0);
-    for (BoxId id : ids) ++counts[hash_rank(id)];
-    std::vector<int> fill(counts.size(), 0);
-    std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
-    std::vector<BoxId> send(ids.size());
-    for (BoxId id : ids) send[static_cast<std::size_t>(fill[hash_rank(id)]++)] = id;
-    std::vector<int> receive_counts;
-    std::vector<BoxId> received;
+    std::vector<std::pair<int, BoxId>> targets;
+    targets.reserve(ids.size());
+    for (BoxId id : ids) targets.push_back({static_cast<int>(mix(id) % static_cast<std::uint64_t>(ranks)), id});
+    std::vector<BoxId> send, received;
+    std::vector<int> counts, receive_counts;
+    sort_by_rank(targets, ranks, send, counts, [](BoxId id) { return id; });
     bytes_sent += all_to_all(comm, send, counts, receive_counts, received);
     return received;
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// MPI_Alltoallv of trivially copyable records, sent as one contiguous MPI type per record so
-// that the counts are records, not bytes (MPI's counts are ints).
+// Records between ranks: grouped by destination, then sent with MPI_Alltoallv (trivially
+// copyable records, as one contiguous MPI type each so that the counts are records, not bytes:
+// MPI's counts are ints).
 
 #include <mpi.h>
 
@@ -44,6 +45,21 @@ std::size_t all_to_all(MPI_Comm comm, const std::vector<Record>& send, const std
         if (static_cast<int>(r) != rank) records += static_cast<std::size_t>(send_counts[r]);
     }
     return records * sizeof(Record);
+}
+
+/// Sorts `targets`, (rank, what) each, by rank into `send` as record_of(what) (a counting sort:
+/// a rank's records lie together, in the order of the targets), and counts[r] how many go to
+/// rank r, ready for all_to_all.
+template <class Target, class Record, class RecordOf>
+void sort_by_rank(const std::vector<Target>& targets, int ranks, std::vector<Record>& send, std::vector<int>& counts,
+                  RecordOf record_of) {
+    counts.assign(static_cast<std::size_t>(ranks), 0);
+    for (const Target& target : targets) ++counts[static_cast<std::size_t>(target.first)];
+    std::vector<int> fill(counts.size(), 0);
+    std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
+    send.resize(targets.size());
+    for (const Target& target : targets)
+        send[static_cast<std::size_t>(fill[static_cast<std::size_t>(target.first)]++)] = record_of(target.second);
 }
 
 }  // namespace smb::mpi::detail
