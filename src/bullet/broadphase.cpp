@@ -159,15 +159,9 @@ void Broadphase::Impl::sync_filters() {
         world_.set_filter(id, filter);
         filters_[id] = filter;
         proxy->static_class = detail::is_static_class(proxy->m_collisionFilterGroup, proxy->m_collisionFilterMask);
-        if (proxy->held_static && !proxy->static_class) {
-            world_.set_static(id, false);
-            proxy->held_static = false;
-        }
-        if (proxy->static_class && !proxy->held_static && !proxy->restless) {
-            // A new static object is held static at once: most never move.
-            world_.set_static(id, true);
-            proxy->held_static = true;
-        }
+        if (proxy->held_static && !proxy->static_class) hold_static(*proxy, false);
+        // A new static object is held static at once: most never move.
+        if (proxy->static_class && !proxy->held_static && !proxy->restless) hold_static(*proxy, true);
         changed_ = true;
     }
 }
@@ -183,12 +177,16 @@ void Broadphase::Impl::set_callback_mode(bool callback_mode) {
     for (std::size_t id = 0; id < slots_.size(); ++id) {
         Proxy* proxy = live(id);
         if (proxy == nullptr) continue;
-        if (proxy->held_static) world_.set_static(id, false);
+        if (proxy->held_static) hold_static(*proxy, false);
         if (filters_[id] != Filter{}) world_.set_filter(id, Filter{});
         filters_[id] = Filter{};
-        proxy->held_static = false;
         proxy->static_class = false;
     }
+}
+
+void Broadphase::Impl::hold_static(Proxy& proxy, bool held) {
+    world_.set_static(static_cast<BoxId>(proxy.m_uniqueId), held);
+    proxy.held_static = held;
 }
 
 void Broadphase::Impl::settle_restless_statics() {
@@ -201,8 +199,7 @@ void Broadphase::Impl::settle_restless_statics() {
             continue;
         }
         if (++proxy->calm_steps >= smb::detail::tuning::bullet_steps_before_static) {
-            world_.set_static(id, true);
-            proxy->held_static = true;
+            hold_static(*proxy, true);
             proxy->restless = false;
             continue;
         }

@@ -150,6 +150,8 @@ public:
     void drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher);
     /// Removes the pairs of `proxy` from the cache, and from its partners' lists.
     void remove_pairs_of(Proxy& proxy, btDispatcher* dispatcher);
+    /// Holds the proxy's box static in the World, or dynamic (held_static follows).
+    void hold_static(Proxy& proxy, bool held);
     void settle_restless_statics();
     void set_callback_mode(bool callback_mode);
 

@@ -49,10 +49,7 @@ void Broadphase::Impl::flush_moves() {
         marks_[id] |= detail::fresh_mark | detail::stale_mark;
         Proxy& proxy = *slots_[id];
         proxy.calm_steps = 0;
-        if (proxy.held_static) {
-            world_.set_static(id, false);
-            proxy.held_static = false;
-        }
+        if (proxy.held_static) hold_static(proxy, false);
         if (proxy.static_class && !proxy.restless) {
             restless_.push_back(id);
             proxy.restless = true;
