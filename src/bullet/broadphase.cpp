@@ -222,7 +222,6 @@ void Broadphase::Impl::calculateOverlappingPairs(btDispatcher* dispatcher) {
     // those the cache holds); a filter callback may change its mind at any step, so it is asked
     // at every one.
     const std::size_t fresh_limit = std::max<std::size_t>(64, live_ / 16);
-    bool tested = false;
     if (changed_ || fresh_.size() > fresh_limit) {
         // The pairs of the detection are merged with the candidates directly: sorted by a radix
         // sort, they cost less than comparing the two lists through hashed partitions. Exact because
@@ -235,7 +234,6 @@ void Broadphase::Impl::calculateOverlappingPairs(btDispatcher* dispatcher) {
         });
         const std::size_t retired_before = retired_ids_.size();
         changed_ = false;
-        tested = true;
         reconcile_candidates(dispatcher);
         index_current_ = false;
         unlist(fresh_, detail::fresh_mark);
@@ -246,9 +244,9 @@ void Broadphase::Impl::calculateOverlappingPairs(btDispatcher* dispatcher) {
         retired_ids_.erase(retired_ids_.begin(), retired_ids_.begin() + static_cast<std::ptrdiff_t>(retired_before));
     } else if (!fresh_.empty()) {
         update_fresh_candidates(dispatcher);
-        tested = true;
+    } else if (!changed_ids_.empty() || test_all_) {
+        test_candidates(dispatcher);
     }
-    if (!tested && (!changed_ids_.empty() || test_all_)) test_candidates(dispatcher);
     unlist(changed_ids_, detail::changed_mark);
     test_all_ = false;
     settle_restless_statics();

@@ -1,12 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Following the candidates between detections: when few fat boxes change in a step (a pile that
-// stays awake, most boxes jittering inside their skins), their candidates are found through an
-// index of the fat boxes and merged into the list, instead of detecting every pair again.
-//
-// Exact because the candidates stay every pair of fat boxes that overlap and pass the filters:
-// a pair whose fat boxes did not change keeps its standing, and every pair with a changed fat
-// box is found again, the partners whose fat boxes are as the index holds them through the
-// index, the others (the stale ones) one by one.
+// The candidates between detections: when few fat boxes change in a step, their candidates are
+// found through an index of the fat boxes and merged into the list instead of detecting every
+// pair again. Exact because the candidates stay every pair of fat boxes that overlap and pass
+// the filters: a pair whose fat boxes did not change keeps its standing, and every pair with a
+// changed fat box is found again (through the index, or one by one among the stale boxes).
 
 #include <algorithm>
 
@@ -50,11 +47,9 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
     if (!index_current_ || stale_.size() > stale_limit) build_index();
     // Between detections no proxy is created, destroyed or refiltered (each makes the next
     // calculateOverlappingPairs detect): the proxies named here are alive.
-    const auto pass = [this](std::uint32_t a, std::uint32_t b) {
-        return callback_mode_ || filters_pass(filters_[a], filters_[b]);
-    };
     const auto found = [this](std::uint32_t a, std::uint32_t b) {
-        found_.push_back(Candidate{std::min(a, b), std::max(a, b), Held::apart});
+        if (callback_mode_ || filters_pass(filters_[a], filters_[b]))
+            found_.push_back(Candidate{std::min(a, b), std::max(a, b), Held::apart});
     };
     found_.clear();
     // The stale boxes side by side, read once per fresh box.
@@ -66,12 +61,12 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
         for (const BoxId hit : hits_) {
             const auto other = static_cast<std::uint32_t>(hit);
             if (other == fresh || (marks_[other] & detail::stale_mark) != 0) continue;
-            if (pass(fresh, other)) found(fresh, other);
+            found(fresh, other);
         }
         for (std::size_t i = 0; i < stale_.size(); ++i) {
             if (!overlaps(fat, stale_boxes_[i])) continue;
             const std::uint32_t other = stale_[i];
-            if (other != fresh && pass(fresh, other)) found(fresh, other);
+            if (other != fresh) found(fresh, other);
         }
     }
     // Two fresh boxes find each other twice.

@@ -1,11 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The skin: smb's World holds each proxy's fat box and detects the pairs of fat boxes (the
-// candidates); the cache gets the candidates whose own boxes overlap. Boxes that jitter inside
-// their fat boxes (a pile that stays awake) change nothing in the World, and a step costs a pass
-// over the candidates instead of a detection.
-//
-// Exact because every proxy's box lies inside its fat box: two boxes that overlap have fat boxes
-// that overlap, so their pair is a candidate, and every candidate is tested on the boxes.
+// The skin (smb/bullet/broadphase.hpp): the World's pairs of fat boxes (the candidates) are
+// tested on the proxies' own boxes before they reach the cache, so that boxes jittering inside
+// their fat boxes cost a pass over the candidates instead of a detection. Exact because every box
+// lies inside its fat box: two boxes that overlap have fat boxes that overlap.
 
 #include "bullet/broadphase_impl.hpp"
 #include "bullet/proxy.hpp"
