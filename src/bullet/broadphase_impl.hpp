@@ -1,10 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The state of smb::bullet::Broadphase behind its public interface: the proxies, the World of
-// their fat boxes, the candidates and the pair cache they are kept in step with. The public
-// calls are handed over one to one; their bodies are in broadphase.cpp (proxies, the step),
-// skin.cpp (fat boxes, the cache's pairs), incremental.cpp (candidates between detections) and
-// queries.cpp.
+// The state of smb::bullet::Broadphase behind its public interface, which hands its calls over
+// one to one to broadphase.cpp (proxies, the step), skin.cpp (fat boxes, the cache's pairs),
+// incremental.cpp (candidates between detections) and queries.cpp.
 
 #include <btBulletCollisionCommon.h>
 
@@ -65,11 +63,11 @@ struct BroadphasePool {
     std::vector<Box<float, 3>> index_boxes_;
     std::vector<BoxId> hits_;
     /// Ids whose fat box changed since the last calculateOverlappingPairs, and since index_ was
-    /// built; marks_ holds, by id, whether an id is listed in either, or in moved_ (fresh_mark,
-    /// stale_mark, moved_mark).
+    /// built.
     std::vector<std::uint32_t> fresh_;
     std::vector<std::uint32_t> stale_;
     std::vector<Box<float, 3>> stale_boxes_;
+    /// By id: the lists it is in, and whether its proxy is alive (detail::fresh_mark and others).
     std::vector<std::uint8_t> marks_;
     /// Ids whose box changed (or that were created or destroyed) since the last
     /// calculateOverlappingPairs: only the candidates they are part of are tested.
@@ -130,7 +128,6 @@ public:
     void test_candidate(Candidate& candidate, btDispatcher* dispatcher);
     /// As test_candidate, without the skip: for a candidate new to the list.
     void test_new_candidate(Candidate& candidate, btDispatcher* dispatcher);
-    /// Marks the proxy's box changed since the last calculateOverlappingPairs.
     void mark_changed(std::uint32_t id);
     void settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher);
     /// Removes the candidate's pair from the cache if it holds it. A callback of the cache may
