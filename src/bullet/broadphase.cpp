@@ -12,7 +12,6 @@
 #include <span>
 #include <string>
 
-#include "bullet/proxy.hpp"
 #include "core/tuning.hpp"
 
 namespace smb::bullet {

@@ -8,7 +8,6 @@
 #include <algorithm>
 
 #include "bullet/broadphase_impl.hpp"
-#include "bullet/proxy.hpp"
 #include "core/pair_key_sort.hpp"
 #include "smb/filter.hpp"
 

@@ -7,7 +7,6 @@
 #include <limits>
 
 #include "bullet/broadphase_impl.hpp"
-#include "bullet/proxy.hpp"
 #include "smb/query.hpp"
 
 namespace smb::bullet {

@@ -5,7 +5,6 @@
 // lies inside its fat box: two boxes that overlap have fat boxes that overlap.
 
 #include "bullet/broadphase_impl.hpp"
-#include "bullet/proxy.hpp"
 #include "core/tuning.hpp"
 
 namespace smb::bullet {
