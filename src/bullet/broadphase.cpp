@@ -43,17 +43,14 @@ Broadphase::Impl::Impl(const WorldSettings& settings, btOverlappingPairCache* pa
 btBroadphaseProxy* Broadphase::Impl::createProxy(const btVector3& aabbMin, const btVector3& aabbMax, void* userPtr,
                                                  int collisionFilterGroup, int collisionFilterMask) {
     const Box<float, 3> box = detail::checked_box(aabbMin, aabbMax, "createProxy");
-    std::uint32_t id = 0;
-    if (!free_ids_.empty()) {
-        id = free_ids_.back();
-    } else {
+    if (free_ids_.empty()) {
         if (slots_.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max())) {
             throw ArgumentError("smb::bullet::Broadphase::createProxy: too many proxies");
         }
-        id = static_cast<std::uint32_t>(slots_.size());
         slots_.push_back(std::make_unique<Proxy>());
-        free_ids_.push_back(id);  // so that a throw below leaves the new slot free
+        free_ids_.push_back(static_cast<std::uint32_t>(slots_.size() - 1));  // a throw below leaves it free
     }
+    const std::uint32_t id = free_ids_.back();
     if (boxes_.size() <= id) {
         boxes_.resize(id + 1, detail::empty_box());
         fat_boxes_.resize(id + 1, detail::empty_box());

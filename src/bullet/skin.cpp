@@ -10,13 +10,11 @@
 namespace smb::bullet {
 
 float Broadphase::Impl::next_skin(std::uint32_t id) const {
-    const Box<float, 3>& box = boxes_[id];
-    const Box<float, 3>& fat = fat_boxes_[id];
     // A box that left its fat box by more than a skin moves fast and would leave any skin at the
     // next step, where its fat box would only bring the World more pairs. One that left by less
     // drifts, and a new skin holds it for a while; longer, the thicker the skin, but a thick
     // skin on the boxes of an avalanche brings the World as many pairs again.
-    if (!detail::contains(detail::grown(fat, skin_), box)) return 0;
+    if (!detail::contains(detail::grown(fat_boxes_[id], skin_), boxes_[id])) return 0;
     return step_ - fat_since_[id] >= smb::detail::tuning::bullet_steps_before_creeping
                ? smb::detail::tuning::bullet_creeping_skins * skin_
                : skin_;
@@ -28,11 +26,9 @@ void Broadphase::Impl::flush_moves() {
     move_boxes_.clear();
     for (const std::uint32_t id : moved_) {
         // A proxy destroyed since has an empty box, inside any fat box.
-        const Box<float, 3>& box = boxes_[id];
-        const Box<float, 3>& fat = fat_boxes_[id];
-        if (detail::contains(fat, box)) continue;
+        if (detail::contains(fat_boxes_[id], boxes_[id])) continue;
         move_ids_.push_back(id);
-        move_boxes_.push_back(detail::grown(box, next_skin(id)));
+        move_boxes_.push_back(detail::grown(boxes_[id], next_skin(id)));
     }
     if (!move_ids_.empty()) world_.update(move_ids_, move_boxes_);
     unlist(moved_, detail::moved_mark);
