@@ -15,11 +15,11 @@ namespace smb {
 namespace {
 
 template <std::floating_point Real, int Dim>
-void check_query(const Box<Real, Dim>& box, std::size_t index, const char* what) {
+void check_query(const Box<Real, Dim>& box, std::size_t index) {
     if (is_valid(box)) return;
     // describe_invalid_box names a box id; here the box is the caller's query number `index`.
     std::string message = detail::describe_invalid_box(static_cast<BoxId>(index), box);
-    message.replace(0, 3, std::string(what) + ": query");
+    message.replace(0, 3, "query: query");
     throw InvalidBoxError(message);
 }
 
@@ -113,14 +113,14 @@ void BoxIndex<Real, Dim>::build_from_store(std::span<const box_type> boxes, std:
 
 template <std::floating_point Real, int Dim>
 void BoxIndex<Real, Dim>::query(const box_type& query, std::vector<BoxId>& out) const {
-    check_query(query, 0, "query");
+    check_query(query, 0);
     out.clear();
     if (grid_) grid_->query(query, [&](BoxId id) { out.push_back(id); });
 }
 
 template <std::floating_point Real, int Dim>
 void BoxIndex<Real, Dim>::query(std::span<const box_type> queries, std::vector<QueryHit>& out) const {
-    for (std::size_t q = 0; q < queries.size(); ++q) check_query(queries[q], q, "query");
+    for (std::size_t q = 0; q < queries.size(); ++q) check_query(queries[q], q);
     out.clear();
     if (!grid_) return;
     for (std::size_t q = 0; q < queries.size(); ++q) {
@@ -131,12 +131,11 @@ void BoxIndex<Real, Dim>::query(std::span<const box_type> queries, std::vector<Q
 template <std::floating_point Real, int Dim>
 void BoxIndex<Real, Dim>::cast_ray(const ray_type& ray, RayHits mode, std::vector<hit_type>& out) const {
     check_ray(ray);
-    if (!grid_) {
+    if (grid_) {
+        detail::cast_ray(*grid_, ray, mode, out);
+    } else {
         out.clear();
-        return;
     }
-    std::vector<detail::RayCandidate> scratch;
-    detail::cast_ray(*grid_, ray, mode, scratch, out);
 }
 
 template <std::floating_point Real, int Dim>

@@ -31,9 +31,7 @@ public:
     [[nodiscard]] unsigned threads() const noexcept { return threads_; }
 
     void update(std::span<const Pair> pairs, std::span<const BoxId> replaced) {
-        DetectionSettings team;
-        team.threads = threads_;
-        const int threads = thread_count(team);
+        const int threads = thread_count(DetectionSettings{.threads = threads_});
         const bool compare = !everything_replaced_ && previous_.size() != 0;
         std::optional<BodyFates> fates;
         if (compare && (!calls_.empty() || !replaced.empty())) fates.emplace(calls_, replaced);

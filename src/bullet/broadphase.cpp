@@ -12,7 +12,6 @@
 #include <span>
 #include <string>
 
-#include "bullet/proxy.hpp"
 #include "core/tuning.hpp"
 
 namespace smb::bullet {
@@ -44,17 +43,14 @@ Broadphase::Impl::Impl(const WorldSettings& settings, btOverlappingPairCache* pa
 btBroadphaseProxy* Broadphase::Impl::createProxy(const btVector3& aabbMin, const btVector3& aabbMax, void* userPtr,
                                                  int collisionFilterGroup, int collisionFilterMask) {
     const Box<float, 3> box = detail::checked_box(aabbMin, aabbMax, "createProxy");
-    std::uint32_t id = 0;
-    if (!free_ids_.empty()) {
-        id = free_ids_.back();
-    } else {
+    if (free_ids_.empty()) {
         if (slots_.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max())) {
             throw ArgumentError("smb::bullet::Broadphase::createProxy: too many proxies");
         }
-        id = static_cast<std::uint32_t>(slots_.size());
         slots_.push_back(std::make_unique<Proxy>());
-        free_ids_.push_back(id);  // so that a throw below leaves the new slot free
+        free_ids_.push_back(static_cast<std::uint32_t>(slots_.size() - 1));  // a throw below leaves it free
     }
+    const std::uint32_t id = free_ids_.back();
     if (boxes_.size() <= id) {
         boxes_.resize(id + 1, detail::empty_box());
         fat_boxes_.resize(id + 1, detail::empty_box());
@@ -147,12 +143,6 @@ void Broadphase::Impl::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMi
     mark_changed(id);
 }
 
-void Broadphase::Impl::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const {
-    const Proxy& own_proxy = own(proxy);
-    aabbMin = own_proxy.m_aabbMin;
-    aabbMax = own_proxy.m_aabbMax;
-}
-
 void Broadphase::Impl::sync_filters() {
     // Every live proxy's bits, at every step: the liveness and the filter held are read from
     // arrays by id, so that a proxy whose bits did not change costs one cache line of its own
@@ -165,15 +155,9 @@ void Broadphase::Impl::sync_filters() {
         world_.set_filter(id, filter);
         filters_[id] = filter;
         proxy->static_class = detail::is_static_class(proxy->m_collisionFilterGroup, proxy->m_collisionFilterMask);
-        if (proxy->held_static && !proxy->static_class) {
-            world_.set_static(id, false);
-            proxy->held_static = false;
-        }
-        if (proxy->static_class && !proxy->held_static && !proxy->restless) {
-            // A new static object is held static at once: most never move.
-            world_.set_static(id, true);
-            proxy->held_static = true;
-        }
+        if (proxy->held_static && !proxy->static_class) hold_static(*proxy, false);
+        // A new static object is held static at once: most never move.
+        if (proxy->static_class && !proxy->held_static && !proxy->restless) hold_static(*proxy, true);
         changed_ = true;
     }
 }
@@ -189,12 +173,16 @@ void Broadphase::Impl::set_callback_mode(bool callback_mode) {
     for (std::size_t id = 0; id < slots_.size(); ++id) {
         Proxy* proxy = live(id);
         if (proxy == nullptr) continue;
-        if (proxy->held_static) world_.set_static(id, false);
+        if (proxy->held_static) hold_static(*proxy, false);
         if (filters_[id] != Filter{}) world_.set_filter(id, Filter{});
         filters_[id] = Filter{};
-        proxy->held_static = false;
         proxy->static_class = false;
     }
+}
+
+void Broadphase::Impl::hold_static(Proxy& proxy, bool held) {
+    world_.set_static(static_cast<BoxId>(proxy.m_uniqueId), held);
+    proxy.held_static = held;
 }
 
 void Broadphase::Impl::settle_restless_statics() {
@@ -207,8 +195,7 @@ void Broadphase::Impl::settle_restless_statics() {
             continue;
         }
         if (++proxy->calm_steps >= smb::detail::tuning::bullet_steps_before_static) {
-            world_.set_static(id, true);
-            proxy->held_static = true;
+            hold_static(*proxy, true);
             proxy->restless = false;
             continue;
         }
@@ -231,7 +218,6 @@ void Broadphase::Impl::calculateOverlappingPairs(btDispatcher* dispatcher) {
     // those the cache holds); a filter callback may change its mind at any step, so it is asked
     // at every one.
     const std::size_t fresh_limit = std::max<std::size_t>(64, live_ / 16);
-    bool tested = false;
     if (changed_ || fresh_.size() > fresh_limit) {
         // The pairs of the detection are merged with the candidates directly: sorted by a radix
         // sort, they cost less than comparing the two lists through hashed partitions. Exact because
@@ -244,25 +230,20 @@ void Broadphase::Impl::calculateOverlappingPairs(btDispatcher* dispatcher) {
         });
         const std::size_t retired_before = retired_ids_.size();
         changed_ = false;
-        tested = true;
         reconcile_candidates(dispatcher);
         index_current_ = false;
-        constexpr auto listed = static_cast<std::uint8_t>(~(detail::fresh_mark | detail::stale_mark));
-        for (const std::uint32_t id : fresh_) marks_[id] &= listed;
-        for (const std::uint32_t id : stale_) marks_[id] &= listed;
-        fresh_.clear();
-        stale_.clear();
+        unlist(fresh_, detail::fresh_mark);
+        unlist(stale_, detail::stale_mark);
         // The detection named the ids destroyed before it for the last time.
         free_ids_.insert(free_ids_.end(), retired_ids_.begin(),
                          retired_ids_.begin() + static_cast<std::ptrdiff_t>(retired_before));
         retired_ids_.erase(retired_ids_.begin(), retired_ids_.begin() + static_cast<std::ptrdiff_t>(retired_before));
     } else if (!fresh_.empty()) {
         update_fresh_candidates(dispatcher);
-        tested = true;
+    } else if (!changed_ids_.empty() || test_all_) {
+        test_candidates(dispatcher);
     }
-    if (!tested && (!changed_ids_.empty() || test_all_)) test_candidates(dispatcher);
-    for (const std::uint32_t id : changed_ids_) marks_[id] &= static_cast<std::uint8_t>(~detail::changed_mark);
-    changed_ids_.clear();
+    unlist(changed_ids_, detail::changed_mark);
     test_all_ = false;
     settle_restless_statics();
     ++step_;
@@ -292,7 +273,9 @@ void Broadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin, con
 }
 
 void Broadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const {
-    impl_->getAabb(proxy, aabbMin, aabbMax);
+    const Impl::Proxy& own_proxy = impl_->own(proxy);
+    aabbMin = own_proxy.m_aabbMin;
+    aabbMax = own_proxy.m_aabbMax;
 }
 
 void Broadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
@@ -306,9 +289,9 @@ void Broadphase::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, bt
 
 void Broadphase::calculateOverlappingPairs(btDispatcher* dispatcher) { impl_->calculateOverlappingPairs(dispatcher); }
 
-btOverlappingPairCache* Broadphase::getOverlappingPairCache() { return impl_->cache(); }
+btOverlappingPairCache* Broadphase::getOverlappingPairCache() { return impl_->cache_; }
 
-const btOverlappingPairCache* Broadphase::getOverlappingPairCache() const { return impl_->cache(); }
+const btOverlappingPairCache* Broadphase::getOverlappingPairCache() const { return impl_->cache_; }
 
 void Broadphase::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const {
     impl_->getBroadphaseAabb(aabbMin, aabbMax);
@@ -318,8 +301,8 @@ void Broadphase::resetPool(btDispatcher* /*dispatcher*/) { impl_->resetPool(); }
 
 void Broadphase::printStats() { impl_->printStats(); }
 
-std::size_t Broadphase::size() const noexcept { return impl_->size(); }
+std::size_t Broadphase::size() const noexcept { return impl_->live_; }
 
-const World<float, 3>& Broadphase::world() const noexcept { return impl_->world(); }
+const World<float, 3>& Broadphase::world() const noexcept { return impl_->world_; }
 
 }  // namespace smb::bullet

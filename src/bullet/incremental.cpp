@@ -1,17 +1,13 @@
 // SPDX-License-Identifier: MIT
-// Following the candidates between detections: when few fat boxes change in a step (a pile that
-// stays awake, most boxes jittering inside their skins), their candidates are found through an
-// index of the fat boxes and merged into the list, instead of detecting every pair again.
-//
-// Exact because the candidates stay every pair of fat boxes that overlap and pass the filters:
-// a pair whose fat boxes did not change keeps its standing, and every pair with a changed fat
-// box is found again, the partners whose fat boxes are as the index holds them through the
-// index, the others (the stale ones) one by one.
+// The candidates between detections: when few fat boxes change in a step, their candidates are
+// found through an index of the fat boxes and merged into the list instead of detecting every
+// pair again. Exact because the candidates stay every pair of fat boxes that overlap and pass
+// the filters: a pair whose fat boxes did not change keeps its standing, and every pair with a
+// changed fat box is found again (through the index, or one by one among the stale boxes).
 
 #include <algorithm>
 
 #include "bullet/broadphase_impl.hpp"
-#include "bullet/proxy.hpp"
 #include "core/pair_key_sort.hpp"
 #include "smb/filter.hpp"
 
@@ -39,8 +35,7 @@ void Broadphase::Impl::build_index() {
         index_boxes_.push_back(fat_boxes_[id]);
     }
     index_.build(index_ids_, index_boxes_);
-    for (const std::uint32_t id : stale_) marks_[id] &= static_cast<std::uint8_t>(~detail::stale_mark);
-    stale_.clear();
+    unlist(stale_, detail::stale_mark);
     index_current_ = true;
 }
 
@@ -51,11 +46,9 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
     if (!index_current_ || stale_.size() > stale_limit) build_index();
     // Between detections no proxy is created, destroyed or refiltered (each makes the next
     // calculateOverlappingPairs detect): the proxies named here are alive.
-    const auto pass = [this](std::uint32_t a, std::uint32_t b) {
-        return callback_mode_ || filters_pass(filters_[a], filters_[b]);
-    };
     const auto found = [this](std::uint32_t a, std::uint32_t b) {
-        found_.push_back(Candidate{std::min(a, b), std::max(a, b), Held::apart});
+        if (callback_mode_ || filters_pass(filters_[a], filters_[b]))
+            found_.push_back(Candidate{std::min(a, b), std::max(a, b), Held::apart});
     };
     found_.clear();
     // The stale boxes side by side, read once per fresh box.
@@ -67,12 +60,12 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
         for (const BoxId hit : hits_) {
             const auto other = static_cast<std::uint32_t>(hit);
             if (other == fresh || (marks_[other] & detail::stale_mark) != 0) continue;
-            if (pass(fresh, other)) found(fresh, other);
+            found(fresh, other);
         }
         for (std::size_t i = 0; i < stale_.size(); ++i) {
             if (!overlaps(fat, stale_boxes_[i])) continue;
             const std::uint32_t other = stale_[i];
-            if (other != fresh && pass(fresh, other)) found(fresh, other);
+            if (other != fresh) found(fresh, other);
         }
     }
     // Two fresh boxes find each other twice.
@@ -89,11 +82,7 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
         if (((marks_[candidate.a] | marks_[candidate.b]) & detail::fresh_mark) != 0) {
             const auto at = std::lower_bound(found_.begin(), found_.end(), candidate, comes_before);
             if (at == found_.end() || !same_pair(*at, candidate)) {
-                if (candidate.held != Held::held) continue;
-                // A callback of the cache may have destroyed a proxy on the way, its pairs with it.
-                Proxy* a = live(candidate.a);
-                Proxy* b = live(candidate.b);
-                if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+                drop_if_held(candidate, dispatcher);
                 continue;
             }
             found_seen_[static_cast<std::size_t>(at - found_.begin())] = 1;
@@ -109,8 +98,7 @@ void Broadphase::Impl::update_fresh_candidates(btDispatcher* dispatcher) {
         test_new_candidate(candidates_.back(), dispatcher);
         candidates_sorted_ = false;
     }
-    for (const std::uint32_t id : fresh_) marks_[id] &= static_cast<std::uint8_t>(~detail::fresh_mark);
-    fresh_.clear();
+    unlist(fresh_, detail::fresh_mark);
 }
 
 void Broadphase::Impl::reconcile_candidates(btDispatcher* dispatcher) {
@@ -141,10 +129,7 @@ void Broadphase::Impl::reconcile_candidates(btDispatcher* dispatcher) {
             keep(candidate);
             continue;
         }
-        if (candidate.held != Held::held) continue;
-        Proxy* a = live(candidate.a);
-        Proxy* b = live(candidate.b);
-        if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+        drop_if_held(candidate, dispatcher);
     }
     while (next != end) add(*next++);
     candidates_.swap(merged_);

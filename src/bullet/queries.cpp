@@ -7,16 +7,9 @@
 #include <limits>
 
 #include "bullet/broadphase_impl.hpp"
-#include "bullet/proxy.hpp"
 #include "smb/query.hpp"
 
 namespace smb::bullet {
-
-namespace {
-
-[[nodiscard]] bool is_zero(const btVector3& v) noexcept { return v.x() == 0 && v.y() == 0 && v.z() == 0; }
-
-}  // namespace
 
 void Broadphase::Impl::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
                                const btVector3& aabbMin, const btVector3& aabbMax) {
@@ -26,14 +19,13 @@ void Broadphase::Impl::rayTest(const btVector3& rayFrom, const btVector3& rayTo,
     const btVector3 offset = rayTo - rayFrom;
     const float length = offset.length();
     const btVector3 direction = length > 0 ? offset / length : btVector3(0, 0, 0);
-    Ray<float, 3> ray;
-    ray.origin = {rayFrom.x(), rayFrom.y(), rayFrom.z()};
-    ray.direction = {direction.x(), direction.y(), direction.z()};
-    ray.max_t = rayCallback.m_lambda_max;
+    const Ray<float, 3> ray{{rayFrom.x(), rayFrom.y(), rayFrom.z()},
+                            {direction.x(), direction.y(), direction.z()},
+                            rayCallback.m_lambda_max};
     if (!is_valid(ray)) return;  // a NaN or negative m_lambda_max: nothing lies within it
 
     std::vector<RayHit<float>> hits;
-    if (is_zero(aabbMin) && is_zero(aabbMax)) {
+    if (aabbMin.isZero() && aabbMax.isZero()) {
         // The World holds fat boxes: a ray enters each proxy's box no sooner than its fat box,
         // so the fat boxes' hits hold every hit, to be measured on the boxes themselves.
         world_.cast_ray(ray, RayHits::all, hits);

@@ -1,26 +1,20 @@
 // SPDX-License-Identifier: MIT
-// The skin: smb's World holds each proxy's fat box and detects the pairs of fat boxes (the
-// candidates); the cache gets the candidates whose own boxes overlap. Boxes that jitter inside
-// their fat boxes (a pile that stays awake) change nothing in the World, and a step costs a pass
-// over the candidates instead of a detection.
-//
-// Exact because every proxy's box lies inside its fat box: two boxes that overlap have fat boxes
-// that overlap, so their pair is a candidate, and every candidate is tested on the boxes.
+// The skin (smb/bullet/broadphase.hpp): the World's pairs of fat boxes (the candidates) are
+// tested on the proxies' own boxes before they reach the cache, so that boxes jittering inside
+// their fat boxes cost a pass over the candidates instead of a detection. Exact because every box
+// lies inside its fat box: two boxes that overlap have fat boxes that overlap.
 
 #include "bullet/broadphase_impl.hpp"
-#include "bullet/proxy.hpp"
 #include "core/tuning.hpp"
 
 namespace smb::bullet {
 
 float Broadphase::Impl::next_skin(std::uint32_t id) const {
-    const Box<float, 3>& box = boxes_[id];
-    const Box<float, 3>& fat = fat_boxes_[id];
     // A box that left its fat box by more than a skin moves fast and would leave any skin at the
     // next step, where its fat box would only bring the World more pairs. One that left by less
     // drifts, and a new skin holds it for a while; longer, the thicker the skin, but a thick
     // skin on the boxes of an avalanche brings the World as many pairs again.
-    if (!detail::contains(detail::grown(fat, skin_), box)) return 0;
+    if (!detail::contains(detail::grown(fat_boxes_[id], skin_), boxes_[id])) return 0;
     return step_ - fat_since_[id] >= smb::detail::tuning::bullet_steps_before_creeping
                ? smb::detail::tuning::bullet_creeping_skins * skin_
                : skin_;
@@ -32,15 +26,12 @@ void Broadphase::Impl::flush_moves() {
     move_boxes_.clear();
     for (const std::uint32_t id : moved_) {
         // A proxy destroyed since has an empty box, inside any fat box.
-        const Box<float, 3>& box = boxes_[id];
-        const Box<float, 3>& fat = fat_boxes_[id];
-        if (detail::contains(fat, box)) continue;
+        if (detail::contains(fat_boxes_[id], boxes_[id])) continue;
         move_ids_.push_back(id);
-        move_boxes_.push_back(detail::grown(box, next_skin(id)));
+        move_boxes_.push_back(detail::grown(boxes_[id], next_skin(id)));
     }
     if (!move_ids_.empty()) world_.update(move_ids_, move_boxes_);
-    for (const std::uint32_t id : moved_) marks_[id] &= static_cast<std::uint8_t>(~detail::moved_mark);
-    moved_.clear();
+    unlist(moved_, detail::moved_mark);
     for (std::size_t i = 0; i < move_ids_.size(); ++i) {
         const auto id = static_cast<std::uint32_t>(move_ids_[i]);
         fat_boxes_[id] = move_boxes_[i];
@@ -50,10 +41,7 @@ void Broadphase::Impl::flush_moves() {
         marks_[id] |= detail::fresh_mark | detail::stale_mark;
         Proxy& proxy = *slots_[id];
         proxy.calm_steps = 0;
-        if (proxy.held_static) {
-            world_.set_static(id, false);
-            proxy.held_static = false;
-        }
+        if (proxy.held_static) hold_static(proxy, false);
         if (proxy.static_class && !proxy.restless) {
             restless_.push_back(id);
             proxy.restless = true;
@@ -87,6 +75,13 @@ void Broadphase::Impl::drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher) {
     cache_->removeOverlappingPair(&a, &b, dispatcher);
 }
 
+void Broadphase::Impl::drop_if_held(const Candidate& candidate, btDispatcher* dispatcher) {
+    if (candidate.held != Held::held) return;
+    Proxy* a = live(candidate.a);
+    Proxy* b = live(candidate.b);
+    if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+}
+
 void Broadphase::Impl::test_candidates(btDispatcher* dispatcher) {
     for (Candidate& candidate : candidates_) test_candidate(candidate, dispatcher);
 }
@@ -97,11 +92,7 @@ void Broadphase::Impl::settle_candidate(Candidate& candidate, bool overlap, btDi
     // pairs left the cache with it, and a proxy created has no candidate before the next
     // detection. The candidates themselves change only in the passes that call this.
     if (!overlap) {
-        if (candidate.held == Held::held) {
-            Proxy* a = live(candidate.a);
-            Proxy* b = live(candidate.b);
-            if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
-        }
+        drop_if_held(candidate, dispatcher);
         candidate.held = Held::apart;
         return;
     }

@@ -51,8 +51,8 @@ public:
 
     /// What became of the previous pair `pair`; `renamed` gives its new name in `now`.
     [[nodiscard]] Outcome follow(const Pair& pair, Pair& now) const {
-        const auto a = fate_of(pair.a);
-        const auto b = fate_of(pair.b);
+        const auto a = lookup(fate_, pair.a);
+        const auto b = lookup(fate_, pair.b);
         if (!a || !b) return Outcome::ended;
         if (*a == pair.a && *b == pair.b) return Outcome::same;
         now = *a < *b ? Pair{*a, *b} : Pair{*b, *a};
@@ -63,29 +63,24 @@ private:
     static constexpr int kFilterBits = 16;
 
     void replace(BoxId name) {
-        if (const auto body = previous_body_at(name)) set_fate(*body, std::nullopt);
+        if (const auto body = lookup(holder_, name)) fate_[*body] = std::nullopt;
         holder_[name] = std::nullopt;
     }
     void swap_remove(BoxId removed, BoxId last) {
-        const auto gone = previous_body_at(removed);
-        const auto moved = previous_body_at(last);
-        if (gone) set_fate(*gone, std::nullopt);
-        if (removed != last && moved) set_fate(*moved, removed);
+        const auto gone = lookup(holder_, removed);
+        const auto moved = lookup(holder_, last);
+        if (gone) fate_[*gone] = std::nullopt;
+        if (removed != last && moved) fate_[*moved] = removed;
         holder_[removed] = removed != last ? moved : std::nullopt;
         if (removed != last) holder_[last] = std::nullopt;
     }
 
-    /// The previous body now at `name`: the one moved there, none, or the one named so before.
-    [[nodiscard]] std::optional<BoxId> previous_body_at(BoxId name) const {
-        const auto it = holder_.find(name);
-        return it != holder_.end() ? it->second : std::optional<BoxId>(name);
+    using Names = std::unordered_map<BoxId, std::optional<BoxId>>;
+    /// What `names` holds for `name`; `name` itself where it holds nothing.
+    [[nodiscard]] static std::optional<BoxId> lookup(const Names& names, BoxId name) {
+        const auto it = names.find(name);
+        return it != names.end() ? it->second : std::optional<BoxId>(name);
     }
-    /// The name now of previous body `body`, none if it is gone.
-    [[nodiscard]] std::optional<BoxId> fate_of(BoxId body) const {
-        const auto it = fate_.find(body);
-        return it != fate_.end() ? it->second : std::optional<BoxId>(body);
-    }
-    void set_fate(BoxId body, std::optional<BoxId> now) { fate_[body] = now; }
 
     /// Exact, one bit per name up to the largest name marked, where that is below 2^27 (16 MiB;
     /// indices and dense ids); else one bit per hashed name. A hashed filter lets through a
@@ -113,8 +108,11 @@ private:
         return static_cast<std::size_t>((name * 0x9E3779B97F4A7C15ULL) >> (64 - kFilterBits));
     }
 
-    std::unordered_map<BoxId, std::optional<BoxId>> fate_;
-    std::unordered_map<BoxId, std::optional<BoxId>> holder_;
+    /// By previous body: its name now, none if it is gone (a body not here is where it was).
+    Names fate_;
+    /// By name: the previous body now there (one moved there) or none (a name not here holds the
+    /// body named so before).
+    Names holder_;
     std::vector<std::uint64_t> filter_;
     bool exact_ = true;
 };

@@ -71,10 +71,17 @@ template <class X, class Y>
     return ((pair.a * 0x9E3779B97F4A7C15ULL) ^ pair.b) * kMix;
 }
 
+/// The partition of `hash` among 2^bits: its top bits. A shift by 64 is undefined: the hash is
+/// shifted by 63, then halved.
+[[nodiscard]] inline std::size_t partition_of(std::uint64_t hash, int bits) noexcept {
+    return static_cast<std::size_t>((hash >> (63 - bits)) >> 1);
+}
+
 /// About this many pairs per partition: their table (32 slots a pair, 4 bytes a slot) and the
 /// pairs themselves fit in a core's L2 cache.
 inline constexpr std::size_t kPairsPerPartition = tuning::pairs_per_partition;
 inline constexpr int kMaxPartitionBits = 24;
+inline constexpr std::size_t kPairsPerThread = tuning::event_pairs_per_thread;
 
 /// The partition bits for `count` pairs: the fewest that leave about kPairsPerPartition each.
 [[nodiscard]] inline int partition_bits_for(std::size_t count) noexcept {
@@ -134,7 +141,7 @@ struct PairPartitions {
             return in_place(wide);  // a wide list is never gapped
         } else {
             if (!gapped) return in_place(packed);
-            const auto partition_below = [&](PackedPair word, std::size_t p) { return partition_of_word(word) < p; };
+            const auto partition_below = [&](PackedPair word, std::size_t p) { return partition_of(word, bits) < p; };
             const auto s0 = std::lower_bound(spill.begin(), spill.end(), p0, partition_below);
             const auto s1 = std::lower_bound(s0, spill.end(), p1, partition_below);
             if (per_unit == 1 && s0 == s1) return in_place(packed);
@@ -156,7 +163,6 @@ struct PairPartitions {
         if (source.size() >= UINT32_MAX)
             throw ArgumentError("PairEvents::update: at most " + std::to_string(UINT32_MAX - 1) + " pairs");
         const int new_bits = partition_bits_for(source.size());
-        constexpr std::size_t kPairsPerThread = tuning::event_pairs_per_thread;
         if ((threads <= 1 || source.size() < 2 * kPairsPerThread) && assign_gapped(source, new_bits, watch)) return;
         assign_counted(source, threads, new_bits, watch);
     }
@@ -165,10 +171,6 @@ struct PairPartitions {
     }
 
 private:
-    [[nodiscard]] std::size_t partition_of_word(PackedPair word) const noexcept {
-        return static_cast<std::size_t>((word >> (63 - bits)) >> 1);
-    }
-
     void make_empty() noexcept {
         packed.clear();
         wide.clear();
@@ -212,9 +214,6 @@ private:
         for (std::size_t p = 0; p < parts; ++p) begins[p] = ends[p] = static_cast<std::uint32_t>(p * room);
         PackedPair* out = packed.data();
         std::uint32_t* end = ends.data();
-        const auto part = [new_bits](PackedPair word) {
-            return static_cast<std::size_t>((word >> (63 - new_bits)) >> 1);
-        };
         // The pass waits on memory: for the source it reads and for the line of the partition
         // it writes to. Fetching both ahead (the partition of the pair 16 ahead) took the update
         // from 28.2-28.7 to 27.8-28.0 ms at 1M boxes.
@@ -223,7 +222,7 @@ private:
             if (i + 2 * kAhead < n) __builtin_prefetch(&source[i + 2 * kAhead]);
             if (i + kAhead < n) {
                 const Pair& ahead = source[i + kAhead];
-                __builtin_prefetch(out + end[part(pack_pair(ahead.a, ahead.b & 0xFFFFFFFFU))], 1);
+                __builtin_prefetch(out + end[partition_of(pack_pair(ahead.a, ahead.b & 0xFFFFFFFFU), new_bits)], 1);
             }
             const Pair& pair = source[i];
             if (pair.a >= pair.b || pair.b > 0xFFFFFFFFU) [[unlikely]] {
@@ -233,7 +232,7 @@ private:
             }
             watch(pair, 0);
             const PackedPair word = pack_pair(pair.a, pair.b);  // its own hash
-            const std::size_t p = part(word);
+            const std::size_t p = partition_of(word, new_bits);
             if (end[p] < (p + 1) * room) [[likely]] {
                 out[end[p]++] = word;
             } else {
@@ -248,13 +247,8 @@ private:
     /// `source`.
     template <class Watch>
     void assign_counted(std::span<const Pair> source, int threads, int new_bits, const Watch& watch) {
-        // A shift by 64 is undefined: one partition is the hash shifted by 63, then halved.
-        const auto partition_of = [new_bits](const Pair& pair) {
-            return static_cast<std::size_t>((pair_hash(pair) >> (63 - new_bits)) >> 1);
-        };
         const std::size_t parts = std::size_t{1} << new_bits;
         const std::size_t n = source.size();
-        constexpr std::size_t kPairsPerThread = tuning::event_pairs_per_thread;
         const int team = std::max(1, std::min(threads, static_cast<int>(n / kPairsPerThread)));
         const auto share = [&](int t) {
             return std::pair{n * static_cast<std::size_t>(t) / static_cast<std::size_t>(team),
@@ -277,7 +271,7 @@ private:
                 }
                 seen |= pair.b;
                 watch(pair, t);
-                ++count[partition_of(pair)];
+                ++count[partition_of(pair_hash(pair), new_bits)];
             }
             names[static_cast<std::size_t>(t)] = seen;
         }
@@ -299,8 +293,10 @@ private:
         const bool pack = all_names <= 0xFFFFFFFFU;
         if (pack) {
             resize_with_slack(packed, n);
+            wide.clear();
         } else {
             resize_with_slack(wide, n);
+            packed.clear();
         }
         begins.swap(starts);
         ends.assign(begins.begin() + 1, begins.end());
@@ -310,11 +306,6 @@ private:
         gapped = false;
         bits = new_bits;
         is_packed = pack;
-        if (pack) {
-            wide.clear();
-        } else {
-            packed.clear();
-        }
 #pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
         for (int t = 0; t < team; ++t) {
             const auto [lo, hi] = share(t);
@@ -322,10 +313,11 @@ private:
             if (pack) {
                 for (std::size_t i = lo; i < hi; ++i) {
                     const PackedPair word = pack_pair(source[i].a, source[i].b);  // its own hash
-                    packed[cursor[(word >> (63 - new_bits)) >> 1]++] = word;
+                    packed[cursor[partition_of(word, new_bits)]++] = word;
                 }
             } else {
-                for (std::size_t i = lo; i < hi; ++i) wide[cursor[partition_of(source[i])]++] = source[i];
+                for (std::size_t i = lo; i < hi; ++i)
+                    wide[cursor[partition_of(pair_hash(source[i]), new_bits)]++] = source[i];
             }
         }
     }

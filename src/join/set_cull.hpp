@@ -22,6 +22,7 @@
 #include <span>
 #include <vector>
 
+#include "core/scene_bounds.hpp"
 #include "core/tuning.hpp"
 #include "smb/box.hpp"
 
@@ -81,29 +82,14 @@ private:
     using Cells = std::array<std::array<std::size_t, 2>, Dim>;  // first and last cell per axis
 
     bool intersect_bounds(std::span<const box_type> first, std::span<const box_type> second) {
-        const auto a = bounds(first);
-        const auto b = bounds(second);
+        const auto a = checked_bounds(first);
+        const auto b = checked_bounds(second);
         for (int k = 0; k < Dim; ++k) {
-            lo_[k] = std::max(a.min[k], b.min[k]);
-            hi_[k] = std::min(a.max[k], b.max[k]);
+            lo_[k] = static_cast<double>(std::max(a.lo[k], b.lo[k]));
+            hi_[k] = static_cast<double>(std::min(a.hi[k], b.hi[k]));
             if (lo_[k] > hi_[k]) return false;
         }
         return true;
-    }
-
-    static Box<double, Dim> bounds(std::span<const box_type> boxes) {
-        Box<double, Dim> all;
-        for (int k = 0; k < Dim; ++k) {
-            all.min[k] = boxes[0].min[k];
-            all.max[k] = boxes[0].max[k];
-        }
-        for (const box_type& box : boxes) {
-            for (int k = 0; k < Dim; ++k) {
-                all.min[k] = std::min(all.min[k], static_cast<double>(box.min[k]));
-                all.max[k] = std::max(all.max[k], static_cast<double>(box.max[k]));
-            }
-        }
-        return all;
     }
 
     std::vector<std::size_t> inside_region(std::span<const box_type> boxes) const {
@@ -118,15 +104,14 @@ private:
     }
 
     void size_grid(std::size_t per_axis) {
-        cells_per_axis_ = per_axis;
         cell_count_ = 1;
         marked_ = 0;
         for (int k = 0; k < Dim; ++k) {
             const double extent = hi_[k] - lo_[k];
             // A flat or overflowing extent puts everything in one cell on that axis.
-            scale_[k] = extent > 0 && std::isfinite(extent) ? static_cast<double>(cells_per_axis_) / extent : 0.0;
+            scale_[k] = extent > 0 && std::isfinite(extent) ? static_cast<double>(per_axis) / extent : 0.0;
             if (!std::isfinite(scale_[k])) scale_[k] = 0.0;
-            axis_cells_[k] = scale_[k] > 0 ? cells_per_axis_ : 1;
+            axis_cells_[k] = scale_[k] > 0 ? per_axis : 1;
             cell_count_ *= axis_cells_[k];
         }
         marks_.assign(cell_count_, 0);
@@ -213,7 +198,6 @@ private:
     std::array<double, Dim> hi_{};
     std::array<double, Dim> scale_{};
     std::array<std::size_t, Dim> axis_cells_{};
-    std::size_t cells_per_axis_ = 1;
     std::size_t cell_count_ = 1;
     std::size_t marked_ = 0;  ///< cells marked so far
     std::vector<std::uint8_t> marks_;

@@ -35,26 +35,11 @@ AxialRegions<Real, Dim>::AxialRegions(int ranks) : per_axis_(regions_per_axis_fo
     has_cuts_ = ranks == 1;
 }
 
-namespace {
-
-/// The cut planes of one axis, each bisected between the smallest and largest centre of its
-/// group until the count of centres below it reaches its share (or the interval cannot shrink).
-template <std::floating_point Real>
-struct CutSearch {
-    std::vector<Real> lower, upper;
-    std::vector<unsigned long long> target;
-    std::vector<int> group;
-    std::vector<char> done;
-};
-
-}  // namespace
-
 template <std::floating_point Real, int Dim>
 void AxialRegions<Real, Dim>::recut(MPI_Comm comm, std::span<const box_type> boxes) {
     const std::size_t n = boxes.size();
     std::vector<int> group_of(n, 0);
     std::vector<Real> values(n);
-    std::vector<std::size_t> order(n);
     for (int axis = 0; axis < Dim; ++axis) {
         const int slabs = per_axis_[axis];
         const int groups = groups_[axis];
@@ -84,24 +69,21 @@ void AxialRegions<Real, Dim>::recut(MPI_Comm comm, std::span<const box_type> box
         MPI_Allreduce(MPI_IN_PLACE, extremes.data(), 2 * groups, MPI_DOUBLE, MPI_MIN, comm);
 
         const std::size_t cut_count = static_cast<std::size_t>(groups) * static_cast<std::size_t>(cuts_per_group);
-        CutSearch<Real> search;
-        search.lower.resize(cut_count);
-        search.upper.resize(cut_count);
-        search.target.resize(cut_count);
-        search.group.resize(cut_count);
-        search.done.assign(cut_count, 0);
+        // The cut planes, each bisected between the smallest and largest centre of its group
+        // until the count of centres below it reaches its share (or the interval cannot shrink).
+        std::vector<Real> lower(cut_count), upper(cut_count);
+        std::vector<unsigned long long> target(cut_count);
+        std::vector<char> done(cut_count, 0);
         for (int g = 0; g < groups; ++g) {
             for (int j = 0; j < cuts_per_group; ++j) {
                 const std::size_t c = static_cast<std::size_t>(g) * static_cast<std::size_t>(cuts_per_group) + j;
-                search.group[c] = g;
-                search.target[c] =
-                    totals[g] * static_cast<unsigned long long>(j + 1) / static_cast<unsigned long long>(slabs);
+                target[c] = totals[g] * static_cast<unsigned long long>(j + 1) / static_cast<unsigned long long>(slabs);
                 if (totals[g] == 0) {  // an empty group: any plane will do
-                    search.lower[c] = search.upper[c] = Real(0);
-                    search.done[c] = 1;
+                    lower[c] = upper[c] = Real(0);
+                    done[c] = 1;
                 } else {
-                    search.lower[c] = static_cast<Real>(extremes[2 * g]);
-                    search.upper[c] = static_cast<Real>(-extremes[2 * g + 1]);
+                    lower[c] = static_cast<Real>(extremes[2 * g]);
+                    upper[c] = static_cast<Real>(-extremes[2 * g + 1]);
                 }
             }
         }
@@ -113,36 +95,32 @@ void AxialRegions<Real, Dim>::recut(MPI_Comm comm, std::span<const box_type> box
         for (int round = 0; round < 64; ++round) {
             bool any_active = false;
             for (std::size_t c = 0; c < cut_count; ++c) {
-                middle[c] = search.lower[c] * Real(0.5) + search.upper[c] * Real(0.5);
-                if (!search.done[c] && !(search.lower[c] < middle[c] && middle[c] < search.upper[c]))
-                    search.done[c] = 1;
-                any_active = any_active || !search.done[c];
-                const int g = search.group[c];
+                middle[c] = lower[c] * Real(0.5) + upper[c] * Real(0.5);
+                if (!done[c] && !(lower[c] < middle[c] && middle[c] < upper[c])) done[c] = 1;
+                any_active = any_active || !done[c];
+                const std::size_t g = c / static_cast<std::size_t>(cuts_per_group);
                 const auto first = values.begin() + static_cast<std::ptrdiff_t>(offsets[g]);
                 const auto last = values.begin() + static_cast<std::ptrdiff_t>(offsets[g + 1]);
-                below[c] = search.done[c]
-                               ? 0
-                               : static_cast<unsigned long long>(std::lower_bound(first, last, middle[c]) - first);
+                below[c] =
+                    done[c] ? 0 : static_cast<unsigned long long>(std::lower_bound(first, last, middle[c]) - first);
             }
             if (!any_active) break;
             MPI_Allreduce(MPI_IN_PLACE, below.data(), static_cast<int>(cut_count), MPI_UNSIGNED_LONG_LONG, MPI_SUM,
                           comm);
             for (std::size_t c = 0; c < cut_count; ++c) {
-                if (search.done[c]) continue;
-                if (below[c] >= search.target[c]) {
-                    search.upper[c] = middle[c];
-                    if (below[c] == search.target[c]) search.done[c] = 1;
+                if (done[c]) continue;
+                if (below[c] >= target[c]) {
+                    upper[c] = middle[c];
+                    if (below[c] == target[c]) done[c] = 1;
                 } else {
-                    search.lower[c] = middle[c];
+                    lower[c] = middle[c];
                 }
             }
         }
         // Ascending within each group, whatever ties did to the bisections.
-        for (int g = 0; g < groups; ++g) {
-            for (int j = 0; j < cuts_per_group; ++j) {
-                const std::size_t c = static_cast<std::size_t>(g) * static_cast<std::size_t>(cuts_per_group) + j;
-                cuts_[axis][c] = j == 0 ? search.upper[c] : std::max(search.upper[c], cuts_[axis][c - 1]);
-            }
+        for (std::size_t c = 0; c < cut_count; ++c) {
+            const bool first_of_group = c % static_cast<std::size_t>(cuts_per_group) == 0;
+            cuts_[axis][c] = first_of_group ? upper[c] : std::max(upper[c], cuts_[axis][c - 1]);
         }
         for (std::size_t i = 0; i < n; ++i) {
             const Real* planes = cuts_of(axis, group_of[i]);

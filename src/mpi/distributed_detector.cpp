@@ -3,17 +3,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <numeric>
+#include <span>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "axial_regions.hpp"
-#include "collective_checks.hpp"
 #include "core/shortest_number.hpp"
 #include "distributed_id_set.hpp"
 #include "exchange.hpp"
 #include "region_store.hpp"
-#include "sent_boxes.hpp"
 #include "smb/detector.hpp"
+#include "smb/errors.hpp"
 
 namespace smb::mpi {
 
@@ -26,19 +29,76 @@ struct BoxRecord {
     Box<Real, Dim> box;
 };
 
-/// Sorts `targets`, (rank, what) each, by rank into `send` as record_of(what) (a counting sort:
-/// a rank's records lie together, in the order of the targets), and counts[r] how many go to
-/// rank r (region r is rank r's), ready for all_to_all.
-template <class Target, class Record, class RecordOf>
-void sort_by_rank(const std::vector<Target>& targets, int ranks, std::vector<Record>& send, std::vector<int>& counts,
-                  RecordOf record_of) {
-    counts.assign(static_cast<std::size_t>(ranks), 0);
-    for (const Target& target : targets) ++counts[static_cast<std::size_t>(target.first)];
-    std::vector<int> fill(counts.size(), 0);
-    std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
-    send.resize(targets.size());
-    for (const Target& target : targets)
-        send[static_cast<std::size_t>(fill[static_cast<std::size_t>(target.first)]++)] = record_of(target.second);
+/// What a rank sent to the regions at its last step: each of its boxes, in id order, and the
+/// regions it went to. Against it, a step sends only what changed (docs/distributed.md).
+template <class Box>
+struct SentBoxes {
+    std::vector<BoxId> ids;  ///< increasing
+    std::vector<Box> boxes;
+    std::vector<std::size_t> first{0};  ///< box i went to regions[first[i] .. first[i + 1])
+    std::vector<int> regions;
+
+    [[nodiscard]] std::size_t size() const noexcept { return ids.size(); }
+    [[nodiscard]] std::span<const int> regions_of(std::size_t i) const noexcept {
+        return std::span<const int>(regions).subspan(first[i], first[i + 1] - first[i]);
+    }
+    void clear() {
+        ids.clear();
+        boxes.clear();
+        first.assign(1, 0);
+        regions.clear();
+    }
+    void add(BoxId id, const Box& box, std::span<const int> to) {
+        ids.push_back(id);
+        boxes.push_back(box);
+        regions.insert(regions.end(), to.begin(), to.end());
+        first.push_back(regions.size());
+    }
+};
+
+/// What each rank found in its own input, to be summed over the ranks.
+struct LocalInputFindings {
+    bool lengths_differ = false;    ///< ids and boxes of different lengths
+    bool has_invalid_box = false;   ///< a box with NaN, infinity or min > max
+    BoxId smallest_invalid_id = 0;  ///< the smallest id of such a box
+    bool ids_changed = false;       ///< the ids differ from the last step's
+};
+
+/// What the ranks found together.
+struct GlobalInputFindings {
+    bool ids_changed_anywhere = false;
+    unsigned long long total_boxes = 0;
+};
+
+/// Sums the findings (and `region_counts`, in place, in the same reduction) over the ranks, and
+/// throws on every rank, with the same message, ArgumentError or InvalidBoxError when any
+/// rank's input was bad: all ranks agree on it before any exchange, so that bad input anywhere
+/// makes every rank throw instead of leaving some in a collective. Collective.
+GlobalInputFindings agree_on_input(MPI_Comm comm, const LocalInputFindings& local, std::size_t local_boxes,
+                                   std::span<unsigned long long> region_counts) {
+    enum : std::size_t { lengths_differ, invalid_box, ids_changed, total_boxes, header };
+    std::vector<unsigned long long> sums(header + region_counts.size(), 0);
+    sums[lengths_differ] = local.lengths_differ ? 1 : 0;
+    sums[invalid_box] = local.has_invalid_box ? 1 : 0;
+    sums[ids_changed] = local.ids_changed ? 1 : 0;
+    sums[total_boxes] = local_boxes;
+    std::copy(region_counts.begin(), region_counts.end(), sums.begin() + header);
+    MPI_Allreduce(MPI_IN_PLACE, sums.data(), static_cast<int>(sums.size()), MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+    if (sums[lengths_differ] != 0) {
+        throw ArgumentError("DistributedDetector::detect: ids and boxes differ in length on " +
+                            std::to_string(sums[lengths_differ]) + " rank(s)");
+    }
+    if (sums[invalid_box] != 0) {
+        // The smallest of the ids that the ranks name (each rank names its own, or none).
+        unsigned long long id =
+            local.has_invalid_box ? local.smallest_invalid_id : std::numeric_limits<unsigned long long>::max();
+        MPI_Allreduce(MPI_IN_PLACE, &id, 1, MPI_UNSIGNED_LONG_LONG, MPI_MIN, comm);
+        throw InvalidBoxError("DistributedDetector::detect: box " + std::to_string(id) +
+                              " is invalid (a NaN or infinite coordinate, or min > max); " +
+                              std::to_string(sums[invalid_box]) + " rank(s) hold invalid boxes");
+    }
+    std::copy(sums.begin() + header, sums.end(), region_counts.begin());
+    return {sums[ids_changed] != 0, sums[total_boxes]};
 }
 
 template <std::floating_point Real, int Dim>
@@ -180,25 +240,24 @@ void DistributedState<Real, Dim>::send_box_changes(std::span<const box_type> box
         for (int region : sent_.regions_of(last)) removal_targets_.push_back({region, sent_.ids[last]});
     };
     next_sent_.clear();
-    std::vector<int>& here = here_;
     std::size_t last = 0;  // both in id order: a merge
     for (std::size_t k = 0; k < order_.size(); ++k) {
         const BoxId id = sorted_ids_[k];
         const box_type& box = boxes[order_[k]];
-        here.clear();
-        regions_.regions_of(box, here);
+        here_.clear();
+        regions_.regions_of(box, here_);
         while (last < sent_.size() && sent_.ids[last] < id) remove_everywhere(last++);
         const bool known = last < sent_.size() && sent_.ids[last] == id;
         const std::span<const int> before = known ? sent_.regions_of(last) : std::span<const int>();
         const bool moved = !known || !(sent_.boxes[last] == box);
-        for (int region : here) {
+        for (int region : here_) {
             if (moved || !contains(before, region)) upsert_targets_.push_back({region, k});
         }
         for (int region : before) {
-            if (!contains(here, region)) removal_targets_.push_back({region, id});
+            if (!contains(here_, region)) removal_targets_.push_back({region, id});
         }
         if (known) ++last;
-        next_sent_.add(id, box, here);
+        next_sent_.add(id, box, here_);
     }
     while (last < sent_.size()) remove_everywhere(last++);
     std::swap(sent_, next_sent_);
@@ -208,10 +267,8 @@ void DistributedState<Real, Dim>::send_box_changes(std::span<const box_type> box
     sort_by_rank(upsert_targets_, ranks_, upsert_send_, upsert_counts, [&](std::size_t k) {
         return Record{sorted_ids_[k], boxes[order_[k]]};
     });
-    all_to_all(comm_, removal_send_, removal_counts, removals_received, removals_received_);
-    all_to_all(comm_, upsert_send_, upsert_counts, upserts_received, upserts_received_);
-    stats_.box_bytes_sent =
-        bytes_to_others<BoxId>(removal_counts, rank_) + bytes_to_others<Record>(upsert_counts, rank_);
+    stats_.box_bytes_sent = all_to_all(comm_, removal_send_, removal_counts, removals_received, removals_received_);
+    stats_.box_bytes_sent += all_to_all(comm_, upsert_send_, upsert_counts, upserts_received, upserts_received_);
     receive_box_changes(removals_received_, upserts_received_, upserts_received);
 }
 
@@ -239,6 +296,7 @@ void DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
     std::vector<std::pair<int, Pair>>& kept = kept_pairs_;
     kept.clear();
     const bool both = settings_.hand_off == PairHandOff::both_holders;
+    std::size_t found = 0;
     const auto start = std::chrono::steady_clock::now();
     // The sink streams the pairs, so no pair limit applies here: a limit reached on one rank
     // alone would leave the others waiting in the exchange.
@@ -253,22 +311,15 @@ void DistributedState<Real, Dim>::detect_in_region_and_hand_off() {
             const Pair pair{region_ids[first], region_ids[second]};
             kept.push_back({holders[first], pair});
             if (both && holders[second] != holders[first]) kept.push_back({holders[second], pair});
+            ++found;
         }
     });
     stats_.local_detect_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats_.pairs_found = found;
     std::vector<int> counts;
     sort_by_rank(kept, ranks_, pair_send_, counts, [](const Pair& pair) { return pair; });
-    stats_.pairs_found = both ? 0 : kept.size();
-    if (both) {
-        for (std::size_t i = 0; i < kept.size(); ++i) {
-            // The second copy of a pair follows its first, addressed to the other holder.
-            if (i + 1 < kept.size() && kept[i + 1].second == kept[i].second) ++i;
-            ++stats_.pairs_found;
-        }
-    }
     std::vector<int> receive_counts;
-    all_to_all(comm_, pair_send_, counts, receive_counts, pairs_received_);
-    stats_.pair_bytes_sent = bytes_to_others<Pair>(counts, rank_);
+    stats_.pair_bytes_sent = all_to_all(comm_, pair_send_, counts, receive_counts, pairs_received_);
 }
 
 template <std::floating_point Real, int Dim>

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
-#include <numeric>
 #include <string>
+#include <utility>
 
 #include "exchange.hpp"
 #include "smb/errors.hpp"
@@ -26,26 +26,22 @@ std::uint64_t mix(std::uint64_t x) noexcept {
 }
 
 /// `ids` to the ranks their hash names; returns what arrived here, and adds the bytes sent.
-std::vector<BoxId> send_to_hash_ranks(MPI_Comm comm, const std::vector<BoxId>& ids, int rank, int ranks,
+std::vector<BoxId> send_to_hash_ranks(MPI_Comm comm, const std::vector<BoxId>& ids, int ranks,
                                       std::size_t& bytes_sent) {
-    const auto hash_rank = [ranks](BoxId id) { return mix(id) % static_cast<std::uint64_t>(ranks); };
-    std::vector<int> counts(static_cast<std::size_t>(ranks), 0);
-    for (BoxId id : ids) ++counts[hash_rank(id)];
-    std::vector<int> fill(counts.size(), 0);
-    std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
-    std::vector<BoxId> send(ids.size());
-    for (BoxId id : ids) send[static_cast<std::size_t>(fill[hash_rank(id)]++)] = id;
-    std::vector<int> receive_counts;
-    std::vector<BoxId> received = all_to_all(comm, send, counts, receive_counts);
-    bytes_sent += bytes_to_others<BoxId>(counts, rank);
+    std::vector<std::pair<int, BoxId>> targets;
+    targets.reserve(ids.size());
+    for (BoxId id : ids) targets.push_back({static_cast<int>(mix(id) % static_cast<std::uint64_t>(ranks)), id});
+    std::vector<BoxId> send, received;
+    std::vector<int> counts, receive_counts;
+    sort_by_rank(targets, ranks, send, counts, [](BoxId id) { return id; });
+    bytes_sent += all_to_all(comm, send, counts, receive_counts, received);
     return received;
 }
 
 }  // namespace
 
 std::size_t DistributedIdSet::check_and_record(MPI_Comm comm, std::span<const BoxId> sorted_ids) {
-    int rank = 0, ranks = 1;
-    MPI_Comm_rank(comm, &rank);
+    int ranks = 1;
     MPI_Comm_size(comm, &ranks);
     constexpr BoxId none = std::numeric_limits<BoxId>::max();
     // A repeat on this rank is found here; repeats across ranks where the hash sends them.
@@ -60,8 +56,8 @@ std::size_t DistributedIdSet::check_and_record(MPI_Comm comm, std::span<const Bo
                         std::back_inserter(removed));
     inserted.erase(std::unique(inserted.begin(), inserted.end()), inserted.end());
     std::size_t bytes_sent = 0;
-    std::vector<BoxId> removed_here = send_to_hash_ranks(comm, removed, rank, ranks, bytes_sent);
-    std::vector<BoxId> inserted_here = send_to_hash_ranks(comm, inserted, rank, ranks, bytes_sent);
+    std::vector<BoxId> removed_here = send_to_hash_ranks(comm, removed, ranks, bytes_sent);
+    std::vector<BoxId> inserted_here = send_to_hash_ranks(comm, inserted, ranks, bytes_sent);
     std::sort(removed_here.begin(), removed_here.end());
     std::sort(inserted_here.begin(), inserted_here.end());
     // An inserted id repeats when two ranks insert it, or when it is here already and its last

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// MPI_Alltoallv of trivially copyable records, sent as one contiguous MPI type per record so
-// that the counts are records, not bytes (MPI's counts are ints).
+// Records between ranks: grouped by destination, then sent with MPI_Alltoallv (trivially
+// copyable records, as one contiguous MPI type each so that the counts are records, not bytes:
+// MPI's counts are ints).
 
 #include <mpi.h>
 
@@ -16,9 +17,10 @@ namespace smb::mpi::detail {
 /// destination, in rank order) and puts in `received` what every rank sent here, grouped by
 /// source in rank order; `receive_counts` gets how many came from each rank. `received` keeps
 /// its memory from call to call (a step's exchange is about the size of the last one's).
+/// Returns the bytes of the records that left this rank (the share sent to itself stays).
 template <class Record>
-void all_to_all(MPI_Comm comm, const std::vector<Record>& send, const std::vector<int>& send_counts,
-                std::vector<int>& receive_counts, std::vector<Record>& received) {
+std::size_t all_to_all(MPI_Comm comm, const std::vector<Record>& send, const std::vector<int>& send_counts,
+                       std::vector<int>& receive_counts, std::vector<Record>& received) {
     static_assert(std::is_trivially_copyable_v<Record>);
     const auto ranks = send_counts.size();
     receive_counts.assign(ranks, 0);
@@ -36,25 +38,28 @@ void all_to_all(MPI_Comm comm, const std::vector<Record>& send, const std::vecto
     MPI_Alltoallv(send.data(), send_counts.data(), send_displacements.data(), record_type, received.data(),
                   receive_counts.data(), receive_displacements.data(), record_type, comm);
     MPI_Type_free(&record_type);
-}
-
-/// As above, into a new vector.
-template <class Record>
-std::vector<Record> all_to_all(MPI_Comm comm, const std::vector<Record>& send, const std::vector<int>& send_counts,
-                               std::vector<int>& receive_counts) {
-    std::vector<Record> received;
-    all_to_all(comm, send, send_counts, receive_counts, received);
-    return received;
-}
-
-/// Bytes of records among `counts` that leave this rank (the share sent to itself stays).
-template <class Record>
-std::size_t bytes_to_others(const std::vector<int>& counts, int rank) {
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
     std::size_t records = 0;
-    for (std::size_t r = 0; r < counts.size(); ++r) {
-        if (static_cast<int>(r) != rank) records += static_cast<std::size_t>(counts[r]);
+    for (std::size_t r = 0; r < ranks; ++r) {
+        if (static_cast<int>(r) != rank) records += static_cast<std::size_t>(send_counts[r]);
     }
     return records * sizeof(Record);
+}
+
+/// Sorts `targets`, (rank, what) each, by rank into `send` as record_of(what) (a counting sort:
+/// a rank's records lie together, in the order of the targets), and counts[r] how many go to
+/// rank r, ready for all_to_all.
+template <class Target, class Record, class RecordOf>
+void sort_by_rank(const std::vector<Target>& targets, int ranks, std::vector<Record>& send, std::vector<int>& counts,
+                  RecordOf record_of) {
+    counts.assign(static_cast<std::size_t>(ranks), 0);
+    for (const Target& target : targets) ++counts[static_cast<std::size_t>(target.first)];
+    std::vector<int> fill(counts.size(), 0);
+    std::exclusive_scan(counts.begin(), counts.end(), fill.begin(), 0);
+    send.resize(targets.size());
+    for (const Target& target : targets)
+        send[static_cast<std::size_t>(fill[static_cast<std::size_t>(target.first)]++)] = record_of(target.second);
 }
 
 }  // namespace smb::mpi::detail

@@ -148,10 +148,8 @@ public:
 private:
     /// The finest cell side: the boxes' mean largest extent, made coarser until the finest grid
     /// has at most about 2N cells (so sparse scenes and point-like boxes cost O(N) memory).
-    [[nodiscard]] double finest_side(double mean_extent) const {
+    [[nodiscard]] double finest_side(double mean_extent, double span) const {
         const double cap = tuning::grid_cells_per_box * static_cast<double>(boxes.size()) + 16.0;
-        double span = 0;
-        for (int k = 0; k < Dim; ++k) span = std::max(span, upper[k] - origin[k]);
         if (!(span > 0) || !std::isfinite(span)) return 1;
         double side = mean_extent > 0 ? mean_extent : span / cap;
         side = std::max(side, span * 1e-12);
@@ -185,18 +183,17 @@ private:
         }
         // Coordinates near the ends of double's range can make the scene's extent overflow: then
         // one cell holds everything (inv = 0 sends every coordinate to it), exact but unindexed.
-        bool finite_span = true;
-        for (int k = 0; k < Dim; ++k) finite_span = finite_span && std::isfinite(upper[k] - origin[k]);
-        double side0 =
-            finite_span ? finest_side(extent_sum / static_cast<double>(n)) : std::numeric_limits<double>::infinity();
+        double span = 0;
+        for (int k = 0; k < Dim; ++k) span = std::max(span, upper[k] - origin[k]);
+        const bool finite_span = std::isfinite(span);  // no NaN: the bounds are finite
+        double side0 = finite_span ? finest_side(extent_sum / static_cast<double>(n), span)
+                                   : std::numeric_limits<double>::infinity();
         // A subnormal side has no finite inverse: the same single cell.
         if (!std::isfinite(1 / side0)) side0 = std::numeric_limits<double>::infinity();
 
         // Level of each box: the finest whose side is at least the box's largest extent, up to
         // the level of a single cell per axis.
         constexpr int kMaxLevels = 64;
-        double span = 0;
-        for (int k = 0; k < Dim; ++k) span = std::max(span, upper[k] - origin[k]);
         int top = 0;
         while (finite_span && top + 1 < kMaxLevels && std::ldexp(side0, top) < span) ++top;
         std::vector<std::uint8_t> level_of(n);

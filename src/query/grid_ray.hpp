@@ -157,8 +157,7 @@ void walk_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, bool 
 /// The hits of a walk, as a cast reports them: the nearest, or all sorted by (t, id), each once.
 template <std::floating_point Real, int Dim>
 void cast_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, RayHits mode,
-              std::vector<RayCandidate>& scratch, std::vector<RayHit<Real>>& out) {
-    scratch.clear();
+              std::vector<RayHit<Real>>& out) {
     if (mode == RayHits::nearest) {
         RayCandidate best;
         bool found = false;
@@ -173,6 +172,7 @@ void cast_ray(const GridIndex<Real, Dim>& grid, const Ray<Real, Dim>& ray, RayHi
         if (found) out.push_back(RayHit<Real>{best.id, static_cast<Real>(best.t)});
         return;
     }
+    std::vector<RayCandidate> scratch;
     walk_ray(
         grid, ray, false, [&](const RayCandidate& c) { scratch.push_back(c); },
         []() -> const RayCandidate* { return nullptr; });
