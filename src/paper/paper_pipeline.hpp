@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <ranges>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -25,11 +26,9 @@
 #include "paper/cell_check.hpp"
 #include "paper/cell_lists.hpp"
 #include "paper/global_local_map.hpp"
-#include "paper/list_growth.hpp"
 #include "paper/mask_array.hpp"
 #include "paper/oversized_sweep.hpp"
 #include "paper/paper_level.hpp"
-#include "paper/segment_rule.hpp"
 #include "paper/shell_sort.hpp"
 #include "paper/singular_regroup.hpp"
 #include "smb/held_precision.hpp"
@@ -80,6 +79,11 @@ public:
 
 private:
     static constexpr int axis_of_level(int level) noexcept { return Dim - 1 - level; }
+    /// The coordinate of `item` of level `depth`: its end of its box on the level's axis.
+    [[nodiscard]] Real key_of(Item item, int depth) const noexcept {
+        const auto& box = boxes_[item >> (depth + 1)];
+        return end_of(item) == 0 ? box.min[axis_of_level(depth)] : box.max[axis_of_level(depth)];
+    }
 
     void choose_cuts();
     void refresh_keys(Level& level, int depth);
@@ -216,28 +220,18 @@ void PaperPipeline<Real, Dim>::choose_cuts() {
 
 template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::refresh_keys(Level& level, int depth) {
-    const auto boxes = boxes_;
-    const int axis = axis_of_level(depth);
-    const int shift = depth + 1;
-    for (Entry& entry : level.list) {
-        const auto& box = boxes[entry.item >> shift];
-        entry.key = end_of(entry.item) == 0 ? box.min[axis] : box.max[axis];
-    }
+    for (Entry& entry : level.list) entry.key = key_of(entry.item, depth);
 }
 
 /// The items of the boxes inserted since the last detection, for level `depth`.
 template <std::floating_point Real, int Dim>
 void PaperPipeline<Real, Dim>::collect_arrivals(int depth) {
     arrivals_.clear();
-    const auto boxes = boxes_;
-    const int axis = axis_of_level(depth);
     const int shift = depth + 1;
-    for (std::size_t slot = listed_; slot < boxes.size(); ++slot) {
+    for (std::size_t slot = listed_; slot < boxes_.size(); ++slot) {
         const Item first = static_cast<Item>(slot) << shift;
-        for (Item item = first; item < first + (Item{1} << shift); ++item) {
-            const auto& box = boxes[slot];
-            arrivals_.push_back(Entry{end_of(item) == 0 ? box.min[axis] : box.max[axis], item});
-        }
+        for (Item item = first; item < first + (Item{1} << shift); ++item)
+            arrivals_.push_back(Entry{key_of(item, depth), item});
     }
 }
 
@@ -256,7 +250,7 @@ void PaperPipeline<Real, Dim>::release_oversized_scratch() {
         }
     };
     trim(arrivals_);
-    regroup_.trim(trim);
+    trim(regroup_.singular);
 }
 
 /// A box is oversized when, on some level and for some of its faces, its min and max fall more
@@ -284,7 +278,8 @@ void PaperPipeline<Real, Dim>::build_cell_lists() {
     const Level& deepest = levels_[Dim - 1];
     for (int depth = 0; depth + 1 < Dim; ++depth) {
         fit_capacity(cell_lists_[static_cast<std::size_t>(depth)], deepest.list.size());
-        regroup_by_cell(ItemsOf<Real>(levels_[depth].list), Dim - 1 - depth, segment_of_, deepest.segment_begin,
+        regroup_by_cell(std::views::transform(levels_[depth].list, [](const Entry& entry) { return entry.item; }),
+                        Dim - 1 - depth, segment_of_, deepest.segment_begin,
                         cell_lists_[static_cast<std::size_t>(depth)], cell_cursor_);
     }
 }
@@ -357,10 +352,7 @@ void PaperPipeline<Real, Dim>::check_invariants() const {
                 const Entry& entry = level.list[i];
                 SMB_ASSERT(entry.item < seen.size() && !seen[entry.item], "list is a permutation");
                 seen[entry.item] = 1;
-                const auto& box = boxes_[entry.item >> shift];
-                const int axis = axis_of_level(depth);
-                SMB_ASSERT(entry.key == (end_of(entry.item) == 0 ? box.min[axis] : box.max[axis]),
-                           "key matches its box");
+                SMB_ASSERT(entry.key == key_of(entry.item, depth), "key matches its box");
                 if (i > level.section_begin[j]) {
                     SMB_ASSERT(!entry_less(entry, level.list[i - 1]), "section is sorted");
                 }
