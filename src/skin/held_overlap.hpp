@@ -72,12 +72,7 @@ template <int Dim>
 #if defined(__GNUC__)
     if constexpr (Dim <= 3) return HeldLanes<Dim>(a, b).hit();
 #endif
-    std::uint32_t hit_bits = 0;
-    for (int k = 0; k < Dim; ++k) {
-        const bool hit = a->min[k] <= b->max[k] && b->min[k] <= a->max[k];
-        hit_bits |= static_cast<std::uint32_t>(hit) << k;
-    }
-    return (hit_bits + 1U) >> Dim;
+    return overlap_bits<Dim>(a, b, 0.0F) & 1U;
 }
 
 }  // namespace smb::detail

@@ -39,7 +39,6 @@
 #include "core/thread_team.hpp"
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "skin/candidate_list.hpp"
-#include "skin/candidate_lives.hpp"
 #include "skin/fat_boxes.hpp"
 #include "skin/held_overlap.hpp"
 #include "skin/position_names.hpp"
@@ -63,7 +62,7 @@ public:
     /// false, having reported nothing and released its memory, when the fat boxes make more
     /// candidates than it will hold (about 32 per box), when a quarter of the boxes left their fat
     /// boxes since the last detection (a skin far too thin for the motion), or after two short
-    /// lives of the candidates running (candidate_lives.hpp): the caller then detects without a
+    /// lives of the candidates running (fat_boxes.hpp): the caller then detects without a
     /// skin.
     template <class Report>
     bool detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> keys, bool keys_kept,
