@@ -40,7 +40,6 @@
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "skin/candidate_list.hpp"
 #include "skin/fat_boxes.hpp"
-#include "skin/held_overlap.hpp"
 #include "skin/position_names.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
