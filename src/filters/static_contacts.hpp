@@ -55,16 +55,11 @@ public:
     void push_back() {
         if (tracking_) entries_.push_back(Entry{});
     }
-    /// Box `from` (the last) now sits at `to`: a swap-remove of the box at `to`.
-    void move_last_to(std::size_t to) {
+    /// The moving boxes were swap-removed at i: the last now sits there.
+    void swap_remove(std::size_t i) {
         if (!tracking_) return;
-        dead_ += entries_[to].room;
-        entries_[to] = entries_.back();
-        entries_.pop_back();
-    }
-    void pop_back() {
-        if (!tracking_) return;
-        dead_ += entries_.back().room;
+        dead_ += entries_[i].room;
+        entries_[i] = entries_.back();
         entries_.pop_back();
     }
 

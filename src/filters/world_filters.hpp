@@ -219,12 +219,10 @@ private:
         if (forget_slot) position_[moving_[p]] = kNowhere;
         const Slot last = moving_.back();
         classes_.swap_remove(p, moving_.size() - 1);
+        contacts_.swap_remove(p);
         if (p + 1 != moving_.size()) {
             moving_[p] = last;
             position_[last] = p;
-            contacts_.move_last_to(p);
-        } else {
-            contacts_.pop_back();
         }
         moving_.pop_back();
     }
