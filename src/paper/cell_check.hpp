@@ -113,12 +113,10 @@ private:
             if (oversized[slot]) continue;
             const std::uint32_t local = map.local(slot);
             if (local == present_min_.size()) present_min_.push_back(0);
-            std::uint8_t min_ends = 0;
             for (int level = 0; level < Dim; ++level) {
                 if (end_on_level(entry.item, level) == 0)
-                    min_ends = static_cast<std::uint8_t>(min_ends | (1U << level));
+                    present_min_[local] = static_cast<std::uint8_t>(present_min_[local] | (1U << level));
             }
-            present_min_[local] = static_cast<std::uint8_t>(present_min_[local] | min_ends);
         }
     }
 

@@ -201,7 +201,8 @@ private:
     enum class Outcome { kept, rebuild, hopeless };
 
     /// One detection on the kept candidates; before reporting anything, rebuild when the moved
-    /// list would outgrow its limit, hopeless when a quarter of the boxes left their fat boxes.
+    /// list would outgrow its limit, hopeless when a quarter of the boxes left their fat boxes
+    /// (the skin is far too thin for the motion: a rebuild costs more than no skin).
     template <class Report>
     Outcome step(Report& report, bool timed, DetectProfile& profile) {
         Stopwatch phase{timed};
@@ -229,8 +230,6 @@ private:
             scan.gone.clear();
             scan.newly_moved = 0;
         }
-        // A quarter of the boxes out of their skin in one detection: the skin is far too thin
-        // for the motion, and a rebuild costs more than a detection without it.
         if (4 * fresh_.size() > n) return Outcome::hopeless;
         if (n > known) newly_moved += n - known;
         if (moved_.size() + newly_moved > moved_limit(n)) return Outcome::rebuild;
