@@ -3,18 +3,14 @@
 // The filter layer of both front doors: boxes split by interaction classes
 // (interaction_classes.hpp) and, where there is more than one class, detected class by class.
 // Each class that can pair within has its own array of boxes in the order of its members
-// (class_members.hpp) and its own detection engine (engine/detection_engine.hpp), whose
-// persistent cuts then follow that class from one detection to the next; its pairs pass through
-// the filters (filtered_report.hpp) on their way out. A class whose values pass with none of its
-// own is not gathered at all. Two layers that ignore each other cost their two detections, not
-// one detection of all their boxes in which the pairs across the layers are found and dropped.
+// (class_members.hpp) and its own detection engine, whose persistent cuts then follow that class
+// from one detection to the next; its pairs pass through the filters (filtered_report.hpp).
 //
 // The boxes are known by position: a World places the positions of its list of moving boxes as
 // they change (world_filters.hpp), a Detector brings the caller's indices to their filters at
-// every call (follow()). A World detects its moving boxes by classes where there are two
-// classes or more (its one class is all its moving boxes, gathered whole); a Detector where
-// there are two, or where some boxes are left out of its one class (otherwise it detects the
-// caller's array itself, and offers the skin's candidates).
+// every call (follow()). A World detects by classes where there are two classes or more; a
+// Detector where there are two, or where some boxes are left out of its one class (otherwise it
+// detects the caller's array itself, and offers the skin's candidates).
 
 #include <cstddef>
 #include <cstdint>
@@ -42,7 +38,6 @@ struct GatheredDetection {
     std::vector<BoxId> keys;     // index k's key for the pipeline, when packed
     bool packed = true;
 
-    /// n boxes: box_of(k) and info_of(k) for index k.
     template <class BoxOf, class InfoOf>
     void gather(std::size_t n, BoxOf&& box_of, InfoOf&& info_of) {
         boxes.resize(n);

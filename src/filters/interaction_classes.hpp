@@ -53,16 +53,21 @@ public:
             pairs_within_.assign(count_, true);
             return;
         }
-        // Union-find over the values, then classes numbered in the order of their first value.
+        // Union-find over the values, then classes numbered in the order of their first value. A
+        // value that passes with itself or a later one lets its class pair within: the later one
+        // is linked to it, so of its class.
         std::vector<std::size_t> root(values_.size());
         std::iota(root.begin(), root.end(), std::size_t{0});
         const auto find_root = [&](std::size_t v) {
             while (root[v] != v) v = root[v] = root[root[v]];
             return v;
         };
+        std::vector<bool> passes(values_.size(), false);
         for (std::size_t i = 0; i < values_.size(); ++i) {
-            for (std::size_t j = i + 1; j < values_.size(); ++j) {
-                if (filters_pass(values_[i], values_[j])) root[find_root(i)] = find_root(j);
+            for (std::size_t j = i; j < values_.size(); ++j) {
+                if (!filters_pass(values_[i], values_[j])) continue;
+                root[find_root(i)] = find_root(j);
+                passes[i] = true;
             }
         }
         std::vector<std::uint8_t> class_of_root(values_.size(), kMissing);
@@ -74,12 +79,7 @@ public:
                 pairs_within_.push_back(false);
             }
             value_class_[v] = c;
-        }
-        for (std::size_t i = 0; i < values_.size(); ++i) {
-            for (std::size_t j = i; j < values_.size(); ++j) {
-                if (value_class_[i] == value_class_[j] && filters_pass(values_[i], values_[j]))
-                    pairs_within_[value_class_[i]] = true;
-            }
+            if (passes[v]) pairs_within_[c] = true;
         }
     }
 

@@ -8,11 +8,9 @@
 // in one pool, each box's in a range with some room: a fresh query that fits is written over
 // the box's old range, one that does not gets a new range at the end of the pool (fresh memory
 // and page faults were a third of the refreshes' cost), and the pool is closed up when half of
-// it is dead. A copy is the static's box on a 16-bit lattice over the fat box
-// (quantized_bounds.hpp), 12 bytes (3D), tested by one vector compare, and its id beside it (a
+// it is dead. A copy is the static's lattice box (quantized_bounds.hpp) and its id beside it (a
 // hit reads the line the test just read): 20 bytes a static (3D), against 32 with float boxes;
-// reading them is most of what a step of this part costs. The exact boxes are read only for
-// the rare static whose lattice test cannot tell.
+// reading them is most of what a step of this part costs.
 
 #include <algorithm>
 #include <array>
@@ -23,7 +21,6 @@
 
 #include "core/pair_output.hpp"
 #include "filters/filtered_report.hpp"
-#include "filters/float_bounds.hpp"
 #include "filters/quantized_bounds.hpp"
 #include "filters/static_grid.hpp"
 #include "smb/box.hpp"
@@ -58,16 +55,11 @@ public:
     void push_back() {
         if (tracking_) entries_.push_back(Entry{});
     }
-    /// Box `from` (the last) now sits at `to`: a swap-remove of the box at `to`.
-    void move_last_to(std::size_t to) {
+    /// The moving boxes were swap-removed at i: the last now sits there.
+    void swap_remove(std::size_t i) {
         if (!tracking_) return;
-        dead_ += entries_[to].room;
-        entries_[to] = entries_.back();
-        entries_.pop_back();
-    }
-    void pop_back() {
-        if (!tracking_) return;
-        dead_ += entries_.back().room;
+        dead_ += entries_[i].room;
+        entries_[i] = entries_.back();
         entries_.pop_back();
     }
 
@@ -129,8 +121,8 @@ private:
     static_assert(sizeof(Copy) >= 16);
 
     struct Entry {
-        FloatBox<Dim> fat{};             // outward: the grid was asked for the statics overlapping it
-        std::array<float, Dim> scale{};  // its lattice's (quantized_bounds.hpp)
+        FloatBox<Dim> fat{};  // outward: the grid was asked for the statics overlapping it
+        std::array<float, Dim> scale{};
         std::size_t offset = 0;
         std::uint32_t count = 0;
         std::uint32_t room = 0;  // pool entries the range holds, count of them in use
@@ -154,8 +146,6 @@ private:
             fat.min[k] = box.min[k] - skin;
             fat.max[k] = box.max[k] + skin;
         }
-        // The float box outward of it is what the grid is asked for and what the box is kept
-        // inside of: both the same region, exactly.
         e.fat = outward_copy(fat);
         found_.clear();
         grid.query(widened<Real>(e.fat), [&](std::uint32_t s) {

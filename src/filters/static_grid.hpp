@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The static boxes of a World, copied once into the one grid of smb (query/grid_index.hpp), which
-// finds the statics overlapping a query box. It is built when the statics change and read by
-// every moving box that left its fat box (static_contacts.hpp). Positions are the grid's: the
-// statics' ids and filters are kept in the grid's order beside its boxes. A floor under a pile of
-// grains sits on a coarse level of its own, so that one large box neither fills the grid with
-// entries nor widens the search of the small statics.
+// The static boxes of a World, copied once into the one grid of smb (query/grid_index.hpp, where
+// a floor under a pile of grains sits on a coarse level of its own). It is built when the statics
+// change and read by every moving box that left its fat box (static_contacts.hpp). Positions are
+// the grid's: the statics' ids and filters are kept in the grid's order beside its boxes.
 
 #include <cmath>
 #include <concepts>

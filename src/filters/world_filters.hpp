@@ -3,13 +3,10 @@
 // A World's filters and static boxes, and the detection it runs once any is in use (the
 // default detection in world_state.hpp stays as it is, one branch away). Per slot of the store:
 // the filter words, the static flag and the position in the list of moving boxes. The moving
-// boxes that can pair with something (not static, category and mask not 0) are gathered, in the
-// order of that list, into one array and detected by a detection engine of their own
-// (engine/detection_engine.hpp), their pairs filtered on the way out (filtered_report.hpp); where
-// the filter values split them into classes that cannot pair with each other, the filter layer
-// that a Detector uses too detects each class on its own (class_detections.hpp). The statics
-// stay out of it: each moving box meets them through its cache (static_contacts.hpp) over a
-// grid of the statics (static_grid.hpp), built again only when the statics change.
+// boxes that can pair with something (not static, category and mask not 0) are gathered in the
+// order of that list and detected by their own engine, or class by class (class_detections.hpp).
+// The statics stay out of it: each moving box meets them through its cache (static_contacts.hpp)
+// over a grid of the statics, built again only when the statics change.
 //
 // The list of moving boxes keeps each box at its position from one detection to the next (a box
 // that leaves it is swap-removed, a box that joins it is appended), so the pipeline sees the
@@ -222,12 +219,10 @@ private:
         if (forget_slot) position_[moving_[p]] = kNowhere;
         const Slot last = moving_.back();
         classes_.swap_remove(p, moving_.size() - 1);
+        contacts_.swap_remove(p);
         if (p + 1 != moving_.size()) {
             moving_[p] = last;
             position_[last] = p;
-            contacts_.move_last_to(p);
-        } else {
-            contacts_.pop_back();
         }
         moving_.pop_back();
     }

@@ -9,28 +9,47 @@
 // land in different segments far apart and every box would look oversized. With it, segment
 // boundaries are true coordinate planes, which the proof of exactness relies on.
 //
-// With the paper's segment rule a cut also moves forward until the segment is long enough on the
-// axis (twice the largest box), so that no box spans three segments (the paper's Fig. 5).
+// With the paper's segment rule (its remark 4 of Section 2.4; SegmentRule::twice_largest_box) a
+// cut also moves forward until the segment is twice the largest box long on the axis, so that no
+// box spans three segments (the paper's Fig. 5). Boxes change size every step, so the largest is
+// measured afresh at every detection.
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "paper/axis_entry.hpp"
+#include "smb/box.hpp"
+#include "smb/settings.hpp"
 
 namespace smb::detail {
 
 using SegmentId = std::uint32_t;
 
+/// The shortest segment allowed on each level l (whose axis is Dim - 1 - l) under `rule`: zero
+/// everywhere for SegmentRule::from_count. Where every box is flat on an axis the length is zero
+/// and the counts alone cut it: a box whose two ends share one key never spans two segments.
+template <std::floating_point Real, int Dim>
+std::array<Real, Dim> shortest_segments(SegmentRule rule, std::span<const Box<Real, Dim>> boxes) {
+    std::array<Real, Dim> shortest{};
+    if (rule != SegmentRule::twice_largest_box) return shortest;
+    std::array<Real, Dim> largest{};
+    for (const auto& box : boxes) {
+        for (int axis = 0; axis < Dim; ++axis) largest[axis] = std::max(largest[axis], box.max[axis] - box.min[axis]);
+    }
+    for (int level = 0; level < Dim; ++level) shortest[level] = 2 * largest[Dim - 1 - level];
+    return shortest;
+}
+
 /// Cuts `section` (sorted) into `segments` segments, none of them empty unless the section has
-/// run out of items. Writes, for every item of the section,
-/// `first_segment` + its segment number into `segment_of` (the paper's index array, indexed by
-/// item id), and appends the list offset (relative to `section_offset`) at which each segment
-/// begins to `segment_begin`. A positive `min_length` is the paper's segment rule: every segment
-/// but the last reaches at least that far on the axis, from its first key to the next
-/// segment's first key (settings.hpp, SegmentRule::twice_largest_box).
+/// run out of items. Writes `first_segment` + its segment number for every item into
+/// `segment_of` (the paper's index array, by item id), and appends the list offset (relative to
+/// `section_offset`) at which each segment begins to `segment_begin`. A positive `min_length` is
+/// the segment rule: every segment but the last reaches at least that far on the axis, from its
+/// first key to the next segment's first key.
 template <std::floating_point Real>
 void cut_section(std::span<const AxisEntry<Real>> section, std::size_t section_offset, SegmentId segments,
                  SegmentId first_segment, std::span<SegmentId> segment_of, std::vector<std::uint32_t>& segment_begin,

@@ -35,29 +35,4 @@ void regroup_by_cell(const ItemRange& upper_items, int corners_shift, std::span<
     }
 }
 
-/// A view of a list's item ids, for regroup_by_cell.
-template <std::floating_point Real>
-class ItemsOf {
-public:
-    explicit ItemsOf(std::span<const AxisEntry<Real>> list) : list_(list) {}
-    class iterator {
-    public:
-        explicit iterator(const AxisEntry<Real>* at) : at_(at) {}
-        Item operator*() const noexcept { return at_->item; }
-        iterator& operator++() noexcept {
-            ++at_;
-            return *this;
-        }
-        bool operator!=(const iterator& other) const noexcept { return at_ != other.at_; }
-
-    private:
-        const AxisEntry<Real>* at_;
-    };
-    [[nodiscard]] iterator begin() const noexcept { return iterator(list_.data()); }
-    [[nodiscard]] iterator end() const noexcept { return iterator(list_.data() + list_.size()); }
-
-private:
-    std::span<const AxisEntry<Real>> list_;
-};
-
 }  // namespace smb::detail

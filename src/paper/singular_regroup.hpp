@@ -42,11 +42,6 @@ struct RegroupScratch {
     std::vector<SingularItem<Real>> singular;  // grouped by destination section once sorted
     std::vector<std::uint32_t> packed_end;     // end of each old section's packed normal items
 
-    template <class Trim>
-    void trim(Trim&& trim_buffer) {
-        trim_buffer(singular);
-    }
-
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return singular.capacity() * sizeof(SingularItem<Real>) + packed_end.capacity() * sizeof(std::uint32_t);
     }

@@ -78,9 +78,9 @@ public:
     /// can see (its arrays are this object's scratch).
     void build(std::span<const box_type> boxes, std::span<const BoxId> names, const PeriodicDomain<Real, Dim>& domain) {
         if (boxes.size() > kIndexMask) throw ArgumentError("periodic detection: at most 2^31 - 1 boxes");
-        n_ = boxes.size();
-        gathered_.resize(n_);
-        keys_.resize(n_);
+        const std::size_t n = boxes.size();
+        gathered_.resize(n);
+        keys_.resize(n);
         records_.clear();
         images_.clear();
         image_keys_.clear();
@@ -90,7 +90,7 @@ public:
         bool names_fit = true;
         bounds_.lo.fill(std::numeric_limits<Real>::infinity());
         bounds_.hi.fill(-std::numeric_limits<Real>::infinity());
-        for (std::size_t i = 0; i < n_; ++i) {
+        for (std::size_t i = 0; i < n; ++i) {
             const box_type& box = boxes[i];
             bool plain = true;
             for (int k = 0; k < Dim; ++k) {
@@ -121,14 +121,14 @@ public:
                 break;  // the box is named below
             }
         }
-        if (n_ != 0) {
+        if (n != 0) {
             for (int k = 0; k < Dim; ++k) valid &= std::isfinite(bounds_.lo[k]) && std::isfinite(bounds_.hi[k]);
         }
         if (!valid || !far_ok_) throw_first_invalid(boxes, names, domain);
         if (packed_ && !names_fit) {
             // An id too large to pack: keys are indices, and names are read from the array.
             packed_ = false;
-            for (std::size_t i = 0; i < n_; ++i) {
+            for (std::size_t i = 0; i < n; ++i) {
                 if ((keys_[i] & kTranslatedKey) == 0) keys_[i] = i;
             }
         }
@@ -142,7 +142,6 @@ public:
     [[nodiscard]] const SceneBounds<Real, Dim>& bounds() const noexcept { return bounds_; }
     /// Whether plain keys hold the names (ids) with the index.
     [[nodiscard]] bool packed() const noexcept { return packed_; }
-    [[nodiscard]] std::size_t images() const noexcept { return images_.size(); }
 
     /// The record of a key with kTranslatedKey.
     [[nodiscard]] const Record& record(BoxId key) const noexcept {
@@ -303,7 +302,6 @@ private:
         throw InvalidBoxError("periodic detection: an invalid box");  // not reached
     }
 
-    std::size_t n_ = 0;
     std::vector<box_type> gathered_;  // the caller's boxes (canonical), then the images
     std::vector<BoxId> keys_;         // per gathered box
     std::vector<Record> records_;     // translated boxes and images

@@ -1,19 +1,15 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The periodic detection a World or a Detector runs: the caller's boxes brought into the domain
-// with their images (periodic_images.hpp), detected by a persistent-cut pipeline of their own
-// (the detection engine, engine/detection_engine.hpp), the pairs turned into the caller's pairs
-// and shifts (periodic_report.hpp).
+// with their images (periodic_images.hpp), detected by a detection engine of their own, the pairs
+// turned into the caller's pairs and shifts (periodic_report.hpp).
 //
-// The pipeline keeps its cuts and its order from one detection to the next, as it does for an
-// array: the caller's box i is gathered at index i, and its images after all the boxes, in box
-// order. An image that comes or goes moves the images after it by one index, which costs those
-// boxes their place in the order (speed, never exactness); images are few (the boxes within
-// their extent of a domain face).
-//
-// With a skin, the engine's skin list keeps the candidate pairs of the gathered array as it does
-// for an ordinary array, on the same terms. A box that wraps around (its canonical box jumps by a period) or an image that moves to
-// another index leaves its fat box there, and finds its candidates again.
+// The engine keeps its cuts and its order (and, with a skin, its candidates) from one detection to
+// the next, as it does for an array: the caller's box i is gathered at index i, and its images
+// after all the boxes, in box order. An image that comes or goes moves the images after it by one
+// index, and a box that wraps around jumps by a period: either costs those boxes their place in
+// the order and their fat boxes (speed, never exactness); images are few (the boxes within their
+// extent of a domain face).
 
 #include <concepts>
 #include <cstddef>
@@ -76,8 +72,6 @@ public:
 
     [[nodiscard]] HeldPrecision precision() const noexcept { return engine_.precision(); }
     [[nodiscard]] std::size_t retested() const noexcept { return engine_.retested(); }
-    /// Images in the last detection.
-    [[nodiscard]] std::size_t images() const noexcept { return images_.images(); }
 
     void clear() {
         images_.clear();

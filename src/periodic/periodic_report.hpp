@@ -2,15 +2,13 @@
 #pragma once
 // The report the pipeline calls with the pairs of gathered boxes it finds in a periodic
 // detection (periodic_images.hpp): it turns each into a pair of the caller's boxes and their
-// shift, or drops it.
-//
-// Two boxes gathered as they are (keys without kTranslatedKey) overlap exactly as the caller's
-// boxes do, under the shift 0: reported at once, without reading memory where the keys hold
-// the names. Any other pair is
-// decoded to (source, mask) on both sides: the same source (a box and its own image, which never
-// overlap in truth) and masks that share an axis (a repeat of a pair found without both images)
-// are dropped; the rest are confirmed on the caller's boxes with overlaps_with_shift, since
-// the gathered boxes were grown to cover the rounding of their translation.
+// shift, or drops it. Two boxes gathered as they are (keys without kTranslatedKey) overlap
+// exactly as the caller's boxes do, under the shift 0: reported at once, without reading memory
+// where the keys hold the names. Any other pair is decoded to (source, mask) on both sides: the
+// same source (a box and its own image, which never overlap in truth) and masks that share an
+// axis (a repeat of a pair found without both images) are dropped; the rest are confirmed on the
+// caller's boxes with overlaps_with_shift, since the gathered boxes were grown to cover the
+// rounding of their translation.
 
 #include <array>
 #include <concepts>

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The skin list's fat boxes: a held box grown by the skin, whether a box is still inside its fat
-// box, and how much skin the boxes of a detection have left.
+// box, and how much skin the boxes of a detection have left; and the limits past which the skin
+// list rebuilds or steps aside.
 
 #include <algorithm>
 #include <cmath>
@@ -30,6 +31,32 @@ inline constexpr std::uint8_t kDone = 8;   // fresh, and its new candidates are 
 [[nodiscard]] inline std::size_t moved_limit(std::size_t n) noexcept {
     return std::max(tuning::moved_limit_floor, n / tuning::moved_limit_divisor);
 }
+
+/// Whether the skin list pays for itself. A life: the detections the candidates served between
+/// two rebuilds. A rebuild costs more than a detection without a skin, so two short lives running
+/// (the motion outruns the skin) and the skin list steps aside.
+class CandidateLives {
+public:
+    /// Counts a detection that rebuilt the candidates, or kept them; true at the end of the second
+    /// short life running.
+    [[nodiscard]] bool short_again(bool rebuilt) noexcept {
+        if (!rebuilt) {
+            ++kept_since_rebuild_;
+            return false;
+        }
+        if (kept_since_rebuild_ >= tuning::short_skin_life) {
+            short_lives_ = 0;
+        } else if (++short_lives_ >= 2) {
+            return true;
+        }
+        kept_since_rebuild_ = 0;
+        return false;
+    }
+
+private:
+    std::size_t kept_since_rebuild_ = tuning::short_skin_life;  // the first build ends no life
+    std::size_t short_lives_ = 0;                               // running
+};
 
 /// `held` grown by `skin` on every side, rounded outward to floats.
 template <int Dim>

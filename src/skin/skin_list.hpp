@@ -39,9 +39,7 @@
 #include "core/thread_team.hpp"
 #include "cuts/persistent_cut_pipeline.hpp"
 #include "skin/candidate_list.hpp"
-#include "skin/candidate_lives.hpp"
 #include "skin/fat_boxes.hpp"
-#include "skin/held_overlap.hpp"
 #include "skin/position_names.hpp"
 #include "smb/box.hpp"
 #include "smb/pair.hpp"
@@ -63,7 +61,7 @@ public:
     /// false, having reported nothing and released its memory, when the fat boxes make more
     /// candidates than it will hold (about 32 per box), when a quarter of the boxes left their fat
     /// boxes since the last detection (a skin far too thin for the motion), or after two short
-    /// lives of the candidates running (candidate_lives.hpp): the caller then detects without a
+    /// lives of the candidates running (fat_boxes.hpp): the caller then detects without a
     /// skin.
     template <class Report>
     bool detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> keys, bool keys_kept,
@@ -203,7 +201,8 @@ private:
     enum class Outcome { kept, rebuild, hopeless };
 
     /// One detection on the kept candidates; before reporting anything, rebuild when the moved
-    /// list would outgrow its limit, hopeless when a quarter of the boxes left their fat boxes.
+    /// list would outgrow its limit, hopeless when a quarter of the boxes left their fat boxes
+    /// (the skin is far too thin for the motion: a rebuild costs more than no skin).
     template <class Report>
     Outcome step(Report& report, bool timed, DetectProfile& profile) {
         Stopwatch phase{timed};
@@ -231,8 +230,6 @@ private:
             scan.gone.clear();
             scan.newly_moved = 0;
         }
-        // A quarter of the boxes out of their skin in one detection: the skin is far too thin
-        // for the motion, and a rebuild costs more than a detection without it.
         if (4 * fresh_.size() > n) return Outcome::hopeless;
         if (n > known) newly_moved += n - known;
         if (moved_.size() + newly_moved > moved_limit(n)) return Outcome::rebuild;
