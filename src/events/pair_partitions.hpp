@@ -293,10 +293,8 @@ private:
         const bool pack = all_names <= 0xFFFFFFFFU;
         if (pack) {
             resize_with_slack(packed, n);
-            wide.clear();
         } else {
             resize_with_slack(wide, n);
-            packed.clear();
         }
         begins.swap(starts);
         ends.assign(begins.begin() + 1, begins.end());
@@ -306,6 +304,11 @@ private:
         gapped = false;
         bits = new_bits;
         is_packed = pack;
+        if (pack) {
+            wide.clear();
+        } else {
+            packed.clear();
+        }
 #pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
         for (int t = 0; t < team; ++t) {
             const auto [lo, hi] = share(t);
