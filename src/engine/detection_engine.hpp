@@ -55,8 +55,7 @@ public:
     /// Reports every overlapping pair of `input` once, each as report(key_a, key_b) or in runs
     /// through report.append(). Throws InvalidBoxError (naming the index) before any change
     /// when a box of unchecked input is invalid. `skin` > 0 lets the skin list detect.
-    /// Defined in engine/detection_engine_detect.hpp and compiled once per box type and report
-    /// (engine/engine_reports.hpp), so that the front doors do not each compile the pipeline.
+    /// Defined and compiled in engine/detection_engine.cpp, once per box type and report.
     template <class Report>
     void detect(const EngineInput<Real, Dim>& input, const DetectionSettings& settings, double skin, Report& report,
                 DetectStats& stats, DetectProfile& profile);
@@ -101,7 +100,7 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept { return cuts_.bytes_held() + skin_.bytes_held(); }
 
 private:
-    /// With a skin, on floats: whether the skin list detected (see detection_engine_detect.hpp).
+    /// With a skin, on floats: whether the skin list detected (detection_engine.cpp).
     template <class Report>
     bool detected_with_skin(const EngineInput<Real, Dim>& input, const SceneBounds<Real, Dim>& bounds,
                             const DetectionSettings& settings, double skin, Report& report, DetectStats& stats,
