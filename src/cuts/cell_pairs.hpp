@@ -52,9 +52,7 @@ class CellPairs {
 public:
     static constexpr std::uint32_t kAllInside = CellRows<Dim>::kAllInside;
 
-    /// Cells of up to this many registered boxes are checked by testing every pair: faster than
-    /// the sweep at the cells' usual ~46 boxes, and still at ~130 (a target population of 64);
-    /// its cost grows as m^2 / 16 lane groups, so crowds are swept.
+    /// Cells of up to this many registered boxes are checked by testing every pair.
     static constexpr std::size_t kAllPairsLimit = tuning::all_pairs_limit;
     /// check_all_pairs() packs a pair of local numbers as i << 16 | j in the lanes' signed
     /// 32-bit integers: it takes cells of up to this many boxes (the pipeline's are at most

@@ -233,15 +233,9 @@ public:
             level, group, n, key_at, [](std::size_t) { return Real{0}; }, selector);
     }
 
-    /// Boxes sampled for a group's typical extent (cut_group()).
+    /// Boxes sampled for a group's typical extent, and keys per segment of a sampled cut
+    /// (cut_group()).
     static constexpr std::size_t kExtentSample = tuning::extent_sample;
-
-    /// A group with more than twice this many keys per segment takes its quantiles from an
-    /// evenly spaced sample of this many keys per segment instead of from all of them
-    /// (cut_group). The planes only need to be about even: the band (set_band) is measured on the
-    /// real counts, and a sample of 256 per segment is within about 6% of the true quantiles. It
-    /// makes the first cuts of a large world (1M boxes: 1M keys on level 0, 28k per group on level
-    /// 1) several times cheaper.
     static constexpr std::size_t kSamplePerSegment = tuning::sample_per_segment;
 
     /// Sets the band of a group just cut: its fullest segment may grow by half (and at least
