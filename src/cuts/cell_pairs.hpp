@@ -1,21 +1,17 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The cell check of the persistent-cut pipeline: the pairs of one cell, found in one of two ways
-// by the number m of boxes registered in the cell. Either way the boxes are copied out one array
-// per coordinate (as floats, cell_scratch.hpp), so that the check reads small contiguous arrays,
-// eight candidates at a time (cell_rows.hpp).
+// by the number m of boxes registered in it. Either way the boxes are copied out one float array
+// per coordinate (cell_scratch.hpp), read eight candidates at a time (cell_rows.hpp), and the
+// hits written down without a branch (a compress through a permutation table), reported after.
 //
-// - Up to kAllPairsLimit boxes, in cells cut on every axis (the cuts aim at about 24 boxes a
-//   cell, about 46 registered in 3D): every pair is tested, in the order the boxes were
-//   registered. No keys, no sort, and loops whose lengths do not depend on the boxes' sizes,
-//   which a sweep's scan does, at one mispredicted exit per box.
-// - Beyond, and in every column (the default cells: x left uncut, level_regrouping.hpp): the
-//   boxes get local numbers (the global-local map of the paper), are sorted on x (cell_x_order.hpp),
-//   and are swept on x with direct tests on
-//   the other axes. A long column swept on x tests about as many candidates per box as boxes
-//   reach it along x, where a cube of the same population tests every box of the cube.
-// Either way the hits of float boxes are written down without a branch (a compress through a
-// permutation table) and reported after the rows.
+// - Up to kAllPairsLimit boxes, in cells cut on every axis (about 46 registered in 3D): every
+//   pair is tested, as registered. No keys, no sort, and loops whose lengths do not depend on the
+//   boxes' sizes, as a sweep's scan does, at one mispredicted exit per box.
+// - Beyond, and in every column (x left uncut, level_regrouping.hpp): the boxes get local numbers
+//   (the paper's global-local map), are sorted on x (cell_x_order.hpp) and swept on x with direct
+//   tests on the other axes. A long column swept on x tests about as many candidates per box as
+//   boxes reach it along x, where a cube of the same population tests every box of the cube.
 //
 // A pair shared by several cells is reported only by the cell that holds the lower corner of the
 // two boxes' intersection, p[k] = max(a.min[k], b.min[k]). This replaces the paper's mask array:

@@ -97,31 +97,24 @@ public:
         exact_.detect(std::span<const Box<Real, Dim>>{}, {}, settings, report, profile);
     }
 
-    /// Boxes from slot `n` on are gone (a Detector's caller passed fewer than last time).
+    // The order's life between detections (cell_order.hpp), in both pipelines or the one in use.
     void forget_slots_from(std::size_t n) {
         exact_.forget_slots_from(n);
         rounded_.forget_slots_from(n);
     }
-
-    /// Drops removed slots from the order and renumbers the others (BoxStore::compact()).
     void fold_removals(const SlotRenumbering& renumbering) {
         exact_.fold_removals(renumbering);
         rounded_.fold_removals(renumbering);
     }
-
-    /// The caller renumbered its boxes by order() (PersistentCutPipeline::follow_own_order()).
     void follow_own_order() {
         if (uses_rounded())
             rounded_.follow_own_order();
         else
             exact_.follow_own_order();
     }
-
-    /// The order the last detection left: every slot once, cell by cell.
     [[nodiscard]] std::span<const Slot> order() const noexcept {
         return uses_rounded() ? rounded_.order() : exact_.order();
     }
-    /// Slots the pipeline in use lists.
     [[nodiscard]] std::size_t listed() const noexcept { return uses_rounded() ? rounded_.listed() : exact_.listed(); }
 
     /// Gives the pipelines' memory back (their cuts and order too); keeps the judgement.

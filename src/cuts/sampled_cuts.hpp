@@ -1,19 +1,17 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The first planes of the levels above the columns, cut from an evenly spaced sample of the
-// caller's boxes before the boxes are copied, where the cuts have no planes yet (the first
-// detection, a new number of segments, a new origin).
+// caller's boxes before they are copied, where the cuts have none (the first detection, a new
+// number of segments, a new origin).
 //
-// Without planes the boxes are copied in slot order, which follows no cell, and every level
-// after the first and every cell check then reads its boxes from all over the copy: at 1M
-// boxes in 3D the first detection took twice a later one, most of it waiting for memory. With
-// planes cut before the copy, the boxes are copied grouped by column (CellOrder::copy_by_column),
-// each column in one run, as a later detection has it. The sample makes cutting cheap: two
-// passes over a quarter of the boxes at 1M in 3D, each kept only as its interval on the axis
-// being cut, against a pass over every box per level. Its planes are as even as the levels' own
-// sampled cuts (kSamplePerSegment keys per segment); each group's band is set from the sample's counts scaled to the boxes,
-// and a group whose real counts leave it is cut again by the levels from all its entries.
-// Exactness never depends on the planes (cut_tree.hpp), only speed does.
+// Without planes the boxes are copied in slot order, which follows no cell, and every later pass
+// reads them from all over the copy: at 1M boxes in 3D the first detection took twice a later
+// one, mostly waiting for memory. With planes, the boxes are copied grouped by column
+// (CellOrder::copy_by_column()), as a later detection has them. The sample makes cutting cheap:
+// two passes over a quarter of the boxes at 1M in 3D, each kept only as its interval on the
+// axis cut, against a pass over every box per level. Its planes are as even as the levels' own
+// sampled cuts; each group's band is set from the sample's counts scaled to the boxes, and a
+// group whose real counts leave it is cut again by the levels. Only speed depends on the planes.
 
 #include <algorithm>
 #include <array>
@@ -53,12 +51,11 @@ public:
         }
     }
 
-    /// The shape the cuts should take where one of the two levels above the columns is a layer
-    /// only a few boxes thick (boxes on a floor): its planes, kept at least a box apart
-    /// (CutTree::cut_group), leave it fewer open segments than it has, and every column holds
-    /// as many times the target population. That level keeps the segments it can open and the
-    /// other gets the rest, so that the columns number as many as before. `cuts`' own shape
-    /// where both levels open most of their segments, or neither does.
+    /// The shape the cuts should take where one of the two levels above the columns is a layer a
+    /// few boxes thick: its planes, kept a box apart (CutTree::cut_group()), open fewer segments
+    /// than it has, and every column holds as many times the target population. That level keeps
+    /// the segments it can open and the other gets the rest, so that the columns number as many
+    /// as before. `cuts`' own shape where both levels open most of their segments, or neither.
     [[nodiscard]] static std::array<std::uint32_t, Dim> reshaped(const CutTree<Real, Dim>& cuts) {
         std::array<std::uint32_t, Dim> shape{};
         for (int level = 0; level < Dim; ++level) shape[level] = cuts.segments(level);
