@@ -92,6 +92,13 @@ template <std::floating_point Real>
     return lo + (past_next ? 1U : 0U) + (past_next && past_after ? 1U : 0U);
 }
 
+/// The segments an entry touches: first | last << 16.
+struct SegmentRange {
+    static constexpr std::uint32_t lo_of(std::uint32_t range) noexcept { return range & 0xFFFFU; }
+    static constexpr std::uint32_t hi_of(std::uint32_t range) noexcept { return range >> 16; }
+    static constexpr std::uint32_t kNone = 1;  // first segment 1, last 0: registered nowhere
+};
+
 template <std::floating_point Real, int Dim>
 class CutTree {
 public:

@@ -25,13 +25,6 @@
 
 namespace smb::detail {
 
-/// The segments an entry touches: first | last << 16.
-struct SegmentRange {
-    static constexpr std::uint32_t lo_of(std::uint32_t range) noexcept { return range & 0xFFFFU; }
-    static constexpr std::uint32_t hi_of(std::uint32_t range) noexcept { return range >> 16; }
-    static constexpr std::uint32_t kNone = 1;  // first segment 1, last 0: registered nowhere
-};
-
 /// What a box is, per position, on the levels built so far (written through atomic_ref).
 inline constexpr std::uint8_t kMarkedOversized = 1;     // found oversized on the level being built
 inline constexpr std::uint8_t kPublishedOversized = 2;  // found oversized on an earlier level

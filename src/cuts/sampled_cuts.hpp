@@ -73,8 +73,7 @@ public:
     }
 
 private:
-    using Interval = std::array<Real, 2>;      // min and max on one axis
-    static constexpr std::uint32_t kNone = 1;  // first segment 1, last 0: registered nowhere
+    using Interval = std::array<Real, 2>;  // min and max on one axis
 
     static constexpr int axis_of_level(int level) noexcept { return CutTree<Real, Dim>::axis_of_level(level); }
 
@@ -100,8 +99,8 @@ private:
             next_.resize(counts_.back());
             std::uint32_t* cursor = counts_.data();
             for_each_sampled(input, origin, size, [&](std::size_t i, const Box<Real, Dim>& box) {
-                const std::uint32_t lo = ranges_[i] & 0xFFFFU;
-                const std::uint32_t hi = ranges_[i] >> 16;
+                const std::uint32_t lo = SegmentRange::lo_of(ranges_[i]);
+                const std::uint32_t hi = SegmentRange::hi_of(ranges_[i]);
                 if (lo > hi) return;
                 const Interval interval{box.min[axis_of_level(1)], box.max[axis_of_level(1)]};
                 next_[cursor[lo]++] = interval;
@@ -163,7 +162,7 @@ private:
                 const std::uint32_t hi = segment_of_max(planes, group[i][1], lo);
                 // A box spanning more than two segments leaves the levels (oversized).
                 const bool oversized = hi - lo > 1;
-                ranges[i] = oversized ? kNone : lo | (hi << 16);
+                ranges[i] = oversized ? SegmentRange::kNone : lo | (hi << 16);
                 count[lo] += oversized ? 0U : 1U;
                 count[hi] += !oversized && hi != lo ? 1U : 0U;
             }
@@ -181,7 +180,7 @@ private:
     std::vector<Interval> intervals_;    // the sampled boxes' intervals in each group, group by group
     std::vector<Interval> next_;         // the next level's, while they are regrouped
     std::vector<std::uint32_t> begin_;   // group g's intervals are [begin_[g], begin_[g + 1])
-    std::vector<std::uint32_t> ranges_;  // per interval: first | last segment << 16 (kNone: oversized)
+    std::vector<std::uint32_t> ranges_;  // per interval: a SegmentRange (kNone: oversized)
     std::vector<std::uint32_t> counts_;  // registrations per segment of the level, shifted by one
     QuantileSelector<Real> selector_;
 };
