@@ -5,8 +5,6 @@
 
 #include <cstddef>
 #include <functional>
-#include <span>
-#include <string>
 #include <vector>
 
 #include "core/pair_output.hpp"

@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <span>
 #include <type_traits>
-#include <vector>
 
 #include "core/assert.hpp"
 #include "core/scene_bounds.hpp"

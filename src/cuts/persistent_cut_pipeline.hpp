@@ -21,7 +21,6 @@
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <vector>
 
 #include "core/held_box.hpp"
 #include "core/id_index.hpp"
