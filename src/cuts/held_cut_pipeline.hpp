@@ -42,19 +42,19 @@ public:
     [[nodiscard]] std::size_t retested() const noexcept { return retested_; }
 
     /// Chooses what the next detection of `boxes` (not empty), whose bounds are `bounds`, holds.
-    /// Judges the scene again when it left the region of the last judgement, when the number of
-    /// boxes moved by more than a quarter (the cut counts change then anyway), and every
-    /// kJudgeEvery detections (a scene of points may have grown into boxes). A new origin forgets
-    /// the cuts, so a scene still held as floats and still inside its region keeps its origin;
-    /// switching gives the other pipeline's memory back.
+    /// Judges the scene again when it left the last judgement's region, when the number of boxes
+    /// moved by more than a quarter (the cut counts change then anyway), and every
+    /// tuning::judge_precision_every detections. A new origin forgets the cuts, so a scene still
+    /// held as floats inside its region keeps its origin; switching gives the other pipeline's
+    /// memory back.
     void judge(std::span<const Box<Real, Dim>> boxes, const SceneBounds<Real, Dim>& bounds) {
         if constexpr (!kMayRound) {
             precision_ = HeldPrecision::floats;
         } else {
             const std::size_t n = boxes.size();
             const bool inside = judged_ && bounds.within(judgement_.region);
-            const bool stale =
-                !inside || 4 * n > 5 * judged_boxes_ || 5 * n < 4 * judged_boxes_ || ++since_judged_ >= kJudgeEvery;
+            const bool stale = !inside || 4 * n > 5 * judged_boxes_ || 5 * n < 4 * judged_boxes_ ||
+                               ++since_judged_ >= tuning::judge_precision_every;
             if (!stale) return;
             FloatResolution<Real, Dim> judged = judge_float_resolution(boxes, bounds);
             judged_ = true;
@@ -143,8 +143,6 @@ private:
     using RoundedPipeline = std::conditional_t<kMayRound, PersistentCutPipeline<float, Dim, Real>, ExactPipeline>;
 
     [[nodiscard]] bool uses_rounded() const noexcept { return kMayRound && precision_ == HeldPrecision::floats; }
-
-    static constexpr std::size_t kJudgeEvery = tuning::judge_precision_every;
 
     ExactPipeline exact_;
     RoundedPipeline rounded_;

@@ -82,7 +82,6 @@ public:
     /// Whether the deepest level (x) is left uncut, so that each cell is a whole column of the
     /// level above, checked by a sweep on x (cell_pairs.hpp); else x is cut like every axis.
     void set_columns(bool columns) noexcept { columns_ = columns; }
-    [[nodiscard]] bool columns() const noexcept { return columns_; }
 
     /// Every level locates without the hint, or every level tries it again (a cold detection).
     void set_without_hint(bool without) noexcept { locator_.set_without_hint(without); }
