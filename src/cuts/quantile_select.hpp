@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/tuning.hpp"
@@ -125,11 +126,7 @@ private:
             std::array<std::uint32_t, kBuckets>& offset = count[d];
             if (std::find(offset.begin(), offset.end(), static_cast<std::uint32_t>(n)) != offset.end()) continue;
             std::uint32_t sum = 0;
-            for (std::uint32_t& bucket : offset) {
-                const std::uint32_t here = bucket;
-                bucket = sum;
-                sum += here;
-            }
+            for (std::uint32_t& bucket : offset) sum += std::exchange(bucket, sum);
             for (std::size_t i = 0; i < n; ++i) {
                 const Key image = from[i];
                 to[offset[(image >> (kDigitBits * d)) & (kBuckets - 1)]++] = image;
