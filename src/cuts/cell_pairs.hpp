@@ -50,9 +50,8 @@ public:
 
     /// Cells of up to this many registered boxes are checked by testing every pair.
     static constexpr std::size_t kAllPairsLimit = tuning::all_pairs_limit;
-    /// check_all_pairs() packs a pair of local numbers as i << 16 | j in the lanes' signed
-    /// 32-bit integers: it takes cells of up to this many boxes (the pipeline's are at most
-    /// kAllPairsLimit).
+    /// check_all_pairs() packs local numbers as i << 16 | j in the lanes' signed 32-bit
+    /// integers: it takes cells of up to this many boxes (the pipeline's, up to kAllPairsLimit).
     static constexpr std::size_t kMostPaired = std::size_t{1} << 15;
 
     /// Reports every pair of `entries` (positions of the boxes registered in the cell) whose
@@ -150,9 +149,8 @@ public:
         }
     }
 
-    /// After check_by_sweep(): the positions of the cell in x order (by min x), and a bound
-    /// on the x extent of its boxes (at least every box's max x - min x); valid until the next
-    /// check.
+    /// After check_by_sweep(): the cell's positions in x order and a bound on its boxes' x
+    /// extent (CellXOrder::widest_x()); valid until the next check.
     [[nodiscard]] std::span<const std::uint32_t> swept_positions() const noexcept {
         return {rows_.columns.position, x_order_.size()};
     }
