@@ -34,10 +34,10 @@
 #include "core/assert.hpp"
 #include "core/bulk_vector.hpp"
 #include "core/tuning.hpp"
+#include "cuts/cell_floor.hpp"
 #include "cuts/cell_rows.hpp"
 #include "cuts/cell_scratch.hpp"
 #include "cuts/cell_x_order.hpp"
-#include "cuts/cells.hpp"
 #include "cuts/monotone_key.hpp"
 #include "smb/box.hpp"
 

@@ -5,7 +5,6 @@
 // the skin list, for the neighbours of a box that left its skin, without a detection of its own.
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
@@ -15,16 +14,12 @@
 #include <vector>
 
 #include "core/assert.hpp"
+#include "cuts/cell_floor.hpp"
 #include "cuts/cell_order.hpp"
 #include "cuts/cut_tree.hpp"
 #include "smb/box.hpp"
 
 namespace smb::detail {
-
-/// Lower planes of a cell on every axis (-inf where the cell is first on that axis): what the
-/// cell check needs to report a pair shared by several cells in one of them only.
-template <std::floating_point Real, int Dim>
-using CellFloor = std::array<Real, Dim>;
 
 /// Where the check of columns swept on x writes each cell's entries back in x order and the
 /// bound on their x extent (Cells::widest); empty where the cells are not columns.
