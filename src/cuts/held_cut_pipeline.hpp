@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The persistent-cut pipeline as a World or Detector of double boxes runs it: holding floats
-// (the boxes shifted to the middle of the scene and rounded, held_box.hpp) wherever floats
-// resolve the scene, and a copy of the doubles where they would not (scene_bounds.hpp judges).
-// Floats halve the bytes every pass moves and double the boxes a vector compares at once; the
-// pairs stay exact, since every pair the floats cannot settle is tested again on the input.
-// Float boxes are held as they are.
+// (held_box.hpp) wherever they resolve the scene, a copy of the doubles where they would not
+// (scene_bounds.hpp judges). Floats halve the bytes every pass moves and double the boxes a
+// vector compares at once. Float boxes are held as they are.
 
 #include <array>
 #include <cstddef>
