@@ -19,9 +19,8 @@ inline constexpr std::size_t mapped_at_once_from = std::size_t{1} << 20;
 
 // --- The axial cuts (src/cuts/) --------------------------------------------------------------
 
-/// Boxes the cuts aim to put in one cell (the public default of
-/// DetectionSettings::target_cell_population): 16, 20, 24 and 32 gave steps within 1% of one
-/// another at 1M boxes (docs/algorithm.md, "Design decisions").
+/// Boxes the cuts aim to put in one cell (DetectionSettings::target_cell_population's default):
+/// 16, 20, 24 and 32 gave steps within 1% at 1M boxes (docs/algorithm.md, "Design decisions").
 inline constexpr std::size_t cell_population = 24;
 static_assert(DetectionSettings{}.target_cell_population == cell_population);
 /// Cells of up to this many registered boxes test every pair, past it they are swept: every pair
@@ -50,8 +49,8 @@ inline constexpr std::size_t quantile_radix_from = 128;
 inline constexpr double thin_level_open_share = 0.75;
 /// The boxes are copied grouped by column (src/cuts/column_presort.hpp) once the first level's
 /// hint misses on more than this share of its entries. At 1M boxes in 3D (`smb run --pipeline
-/// detector`) it missed on 2% at Λ = 0.01, 7% at 0.02, 14% at 0.03, 62% at 0.1; a step by column
-/// against in last step's order took 94-97 ms against 100-105 at 0.02, 92-96 against 106-109 at
+/// detector`) it missed on 2% at Λ = 0.01, 7% at 0.02, 14% at 0.03, 62% at 0.1; a step copied by
+/// column took 94-97 ms against 100-105 in last step's order at 0.02, 92-96 against 106-109 at
 /// 0.03, 99-103 against 107-112 at 0.1 (copy 8-10 ms dearer, levels 13-14 ms cheaper). Below
 /// about 5% last step's order, x-sorted in each column, serves better.
 inline constexpr double column_copy_start_misses = 0.05;

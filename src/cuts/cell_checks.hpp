@@ -48,10 +48,10 @@ public:
     /// Pairs one column may hold while the threads check a round (4 MiB); see in_ordered_rounds().
     static constexpr std::size_t kBlockPairCap = tuning::block_pair_cap;
 
-    /// Reports every pair of the cells, and then of the oversized boxes, to `report` (report(a, b)
-    /// for single pairs, report.append(pairs) for runs), on `threads` threads. Writes to `home`
-    /// every box once: each cell's home boxes (those whose lower corner it holds), cell by cell,
-    /// then the oversized boxes. Returns the insertion-sort moves of the swept cells.
+    /// Reports every pair of the cells, then of the oversized boxes (report(a, b), or
+    /// report.append(pairs) for runs), on `threads` threads. Writes every box once to `home`: each
+    /// cell's home boxes (whose lower corner it holds), cell by cell, then the oversized boxes.
+    /// Returns the insertion-sort moves of the swept cells.
     template <class Checked, class Report>
     std::size_t check(const Checked& checked, float sure_margin, int threads, Report& report,
                       BulkVector<Position>& home) {
