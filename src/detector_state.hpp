@@ -89,11 +89,10 @@ public:
     }
 
     /// The detection with filters (smb/filter.hpp), `filters` checked against `boxes`. Where the
-    /// filters make two interaction classes or more, or leave some boxes out of their one class,
-    /// the filter layer that a World uses too detects each class apart
-    /// (filters/class_detections.hpp); the skin's candidates then name the boxes gathered, not
-    /// the caller's, and none are offered. Otherwise the caller's array is detected as it is, its
-    /// pairs passing through the filtered sink (filters/filtered_sink.hpp).
+    /// filters make two interaction classes or more, or leave boxes out of their one class, each
+    /// class is detected apart as a World's are (filters/class_detections.hpp), and no candidates
+    /// are offered (the skin's would name the boxes gathered). Otherwise the caller's array is
+    /// detected as it is, through the filtered sink (filters/filtered_sink.hpp).
     DetectStats detect_filtered(std::span<const Box<Real, Dim>> boxes, const DetectFilters& filters,
                                 const PairSink& sink) {
         if (!filters_in_use(filters)) return detect(boxes, sink);
@@ -115,8 +114,7 @@ public:
 
     /// The periodic detection (periodic/periodic_path.hpp) into `pairs`, `update_events` (if
     /// any) given the (a, b) of the pairs first. Its path is made on the first periodic call, so
-    /// that a detector that never uses one stays small. The skin's candidates are the ordinary
-    /// detections' (smb/candidate_pairs.hpp).
+    /// that a detector that never uses one stays small. No candidates are offered after it.
     template <class... UpdateEvents>
     DetectStats detect_periodic(std::span<const Box<Real, Dim>> boxes, const PeriodicDomain<Real, Dim>& domain,
                                 std::vector<PeriodicPair>& pairs, UpdateEvents&&... update_events) {

@@ -226,8 +226,7 @@ DetectStats World<Real, Dim>::detect(const PeriodicDomain<Real, Dim>& domain, st
 
 template <std::floating_point Real, int Dim>
 void World<Real, Dim>::set_filter(BoxId id, const Filter& filter) {
-    auto& state = this->state();
-    state.filters().set_filter(state.store().slot_of(id), filter, state.store().slot_count());
+    set_filter(std::span(&id, 1), filter);
 }
 
 template <std::floating_point Real, int Dim>

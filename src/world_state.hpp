@@ -115,8 +115,8 @@ public:
         return stats;
     }
 
-    /// The periodic detection (periodic/periodic_path.hpp) into `pairs`, and `events` (if not
-    /// null) updated with the (a, b) of the pairs before they replace the contents of `pairs`.
+    /// The periodic detection (periodic/periodic_path.hpp) into `pairs`, `events` (if not null)
+    /// updated with their (a, b) first.
     DetectStats detect_periodic(const PeriodicDomain<Real, Dim>& domain, std::vector<PeriodicPair>& pairs,
                                 PairEvents* events) {
         check_domain(domain);
@@ -127,9 +127,8 @@ public:
         const Stopwatch whole;
         Periodic& periodic = enter<Periodic>();
         // The periodic path sees box i at index i: compacting moves the last boxes into the
-        // holes, which costs them their place in its order, nothing more. The boxes are checked
-        // as they are gathered: a box too large for the domain throws then, and what changed
-        // before (the compaction, the other paths forgotten) costs speed, not results.
+        // holes, which costs them their place in its order, nothing more. A box too large for the
+        // domain throws as it is gathered, after the compaction: that costs speed, not results.
         if (store_.has_removals()) store_.compact(store_.slot_count());
         DetectStats stats;
         DetectProfile profile;

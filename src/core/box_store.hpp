@@ -42,7 +42,7 @@ public:
 
     [[nodiscard]] Slot slot_of(BoxId id) const {
         const Slot slot = slot_of_id_.find(id);
-        if (slot == kNoSlot) throw UnknownIdError(unknown_message(id));
+        if (slot == kNoSlot) throw UnknownIdError("box " + std::to_string(id) + " is not in the world");
         return slot;
     }
 
@@ -57,7 +57,7 @@ public:
         for (std::size_t i = 0; i < ids.size(); ++i) {
             if (!slot_of_id_.insert(ids[i], first + static_cast<Slot>(i))) {
                 for (std::size_t j = 0; j < i; ++j) slot_of_id_.erase(ids[j]);
-                throw DuplicateIdError(duplicate_message(ids[i]));
+                throw DuplicateIdError("box " + std::to_string(ids[i]) + " is already in the world");
             }
         }
         boxes_.insert(boxes_.end(), boxes.begin(), boxes.end());
@@ -143,13 +143,12 @@ public:
         removed_log_.clear();
     }
 
-    /// Drops the removed slots and returns how every old slot was renumbered; the SMB lists are
-    /// renumbered with it, as the paper asks whenever N changes (its Section 2.4, remark 3).
-    /// The first `listed` slots are those the pipeline lists; the others arrived since its last
-    /// detection. A removed listed slot takes the last living listed box, so the listed boxes keep
-    /// the first slots and only as many of them move as were removed; the arrivals close up
-    /// behind, in their order. (Keeping every box in its order moved every box after the first
-    /// removal: at 10M boxes, 570 MB a step.) Allocates before it changes anything.
+    /// Drops the removed slots and returns how every old slot was renumbered, for the SMB lists
+    /// (the paper's Section 2.4, remark 3). The first `listed` slots are those the pipeline lists,
+    /// the others arrived since. A removed listed slot takes the last living listed box, so only
+    /// as many listed boxes move as were removed (keeping every box in its order moved every box
+    /// after the first removal: 570 MB a step at 10M boxes); the arrivals close up behind, in
+    /// their order. Allocates before it changes anything.
     SlotRenumbering compact(std::size_t listed) {
         const std::size_t n = boxes_.size();
         listed = std::min(listed, n);
@@ -202,16 +201,13 @@ private:
             if (!is_valid(boxes[i])) throw InvalidBoxError(describe_invalid_box(ids[i], boxes[i]));
         }
     }
-    static std::string unknown_message(BoxId id) { return "box " + std::to_string(id) + " is not in the world"; }
-    static std::string duplicate_message(BoxId id) { return "box " + std::to_string(id) + " is already in the world"; }
     /// Room for `extra` more boxes, whose largest id is `largest`.
     void reserve_for(std::size_t extra, BoxId largest) {
         // The deepest SMB list numbers 2^Dim corners per slot in 32 bits.
         constexpr std::size_t max_slots = (std::size_t{1} << (32 - Dim)) - 1;
         if (boxes_.size() + extra > max_slots)
             throw ArgumentError("a " + std::to_string(Dim) + "D world holds at most " + std::to_string(max_slots) +
-                                " boxes (including boxes removed "
-                                "since the last detection)");
+                                " boxes (including boxes removed since the last detection)");
         reserve_with_slack(boxes_, boxes_.size() + extra);
         reserve_with_slack(ids_, ids_.size() + extra);
         reserve_with_slack(alive_, alive_.size() + extra);

@@ -5,8 +5,6 @@
 
 #include <cstddef>
 #include <functional>
-#include <span>
-#include <string>
 #include <vector>
 
 #include "core/pair_output.hpp"
@@ -16,11 +14,10 @@
 
 namespace smb::detail {
 
-/// Runs `fill` (a callable that appends to `items` and returns a result), then leaves in
-/// `items` exactly what it appended. The old contents stay in front until it succeeded, so that
-/// a throw (an invalid box, the pair limit, an allocation) leaves them as they were; capacity
-/// the failed call added is given back, since past a pair limit it may be gigabytes. An empty
-/// vector costs nothing more than a plain collection.
+/// Runs `fill` (which appends to `items` and returns a result), then leaves in `items` exactly
+/// what it appended. The old contents stay in front until it succeeded, so that a throw (an
+/// invalid box, the pair limit, an allocation) leaves them as they were; capacity a failed call
+/// added is given back (past a pair limit it may be gigabytes). An empty vector costs nothing.
 template <class Item, class Fill>
 auto replace_on_success(std::vector<Item>& items, Fill&& fill) {
     const std::size_t kept = items.size();

@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// How the arrays that follow the number of boxes grow. std::vector::resize doubles its capacity
-// when it outgrows it, which would leave a world whose box count crept past a power of two
-// holding twice the memory it needs; reserve() with the exact size instead reallocates, and
-// copies, on every step that adds a box. A sixteenth of slack sits between: a world whose size
-// wanders step by step reallocates rarely and holds at most a sixteenth more than it uses. The
-// first fill is exact: a world that never changes size pays nothing.
+// How the arrays that follow the number of boxes grow. Doubling (std::vector::resize) leaves a
+// world whose count crept past a power of two holding twice the memory it needs; reserving the
+// exact size reallocates, and copies, at every step that adds a box. A sixteenth of slack sits
+// between: rare reallocations, at most a sixteenth held unused. The first fill is exact.
 
 #include <cstddef>
 

@@ -2,10 +2,9 @@
 #pragma once
 // The map from the caller's ids to the store's slots. Simulations mostly number their bodies
 // 0, 1, 2, ... (World::assign() does so by definition): those ids index a plain array of slots,
-// 4 bytes per id and one memory access per lookup, where a node-based hash map costs about
-// 48 bytes per box with its allocations and a pointer chase per lookup. Ids far above the
-// number of boxes (sparse or hashed ids) go to a hash map instead, so the array never grows
-// beyond about twice the number of boxes.
+// 4 bytes per id and one access per lookup, where a node-based hash map costs about 48 bytes a
+// box and a pointer chase. Ids far above the number of boxes go to a hash map instead, so the
+// array never grows beyond about twice the number of boxes.
 
 #include <algorithm>
 #include <cstddef>
@@ -67,9 +66,9 @@ public:
         --count_;
     }
 
-    /// Makes room for `extra` more ids, the largest of them `largest`: the array grows at once to
-    /// hold it, where it will (inserted one by one, a batch would double the array about log2(n)
-    /// times, each time a copy into fresh memory), and the hash map's buckets are reserved.
+    /// Makes room for `extra` more ids, the largest `largest`: the array grows at once to hold
+    /// it where it will (one by one, a batch would double the array about log2(n) times, each a
+    /// copy), and the hash map's buckets are reserved.
     void reserve(std::size_t extra, BoxId largest) {
         if (largest >= dense_.size() && largest < dense_limit(count_ + extra)) resize_dense(largest + 1);
         if (!sparse_.empty()) sparse_.reserve(sparse_.size() + extra);
@@ -100,13 +99,13 @@ public:
     }
 
 private:
-    /// Ids below this go to the array when there are `count` boxes: at most two array entries
-    /// per box (plus a small start), so that sparse ids cannot blow the array up.
+    /// Ids below this go to the array when there are `count` boxes: at most two entries per box
+    /// (plus a small start), so that sparse ids cannot blow the array up.
     static std::size_t dense_limit(std::size_t count) noexcept { return 2 * count + 1024; }
 
     void grow_dense(BoxId id) {
-        // Doubling (up to the limit), so that ids arriving one by one grow the array, and move
-        // the hash map's ids, only a logarithmic number of times.
+        // Doubling (up to the limit): ids arriving one by one grow the array, and move the hash
+        // map's ids, a logarithmic number of times.
         const std::size_t doubled = std::max<std::size_t>(2 * dense_.size(), 64);
         resize_dense(std::max<std::size_t>(id + 1, std::min(doubled, dense_limit(count_ + 1))));
     }

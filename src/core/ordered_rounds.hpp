@@ -14,11 +14,10 @@
 namespace smb::detail {
 
 /// Runs work(item, buffer) for items 0..count-1 on `threads` threads, in rounds of `round` items,
-/// and hand_on(item, buffer) for every item in item order on the calling thread, one round behind:
-/// while the threads work on round r, the calling thread hands round r - 1 on. Item i gets buffer
-/// i % (2 * round) of `buffers` (grown to that many if smaller), which is written again only after
-/// it was handed on. hand_on may throw (a caller's sink): the exception is caught, the work and
-/// hand-ons left are skipped, and it is thrown again once the threads have joined.
+/// and hand_on(item, buffer) in item order on the calling thread, one round behind (while the
+/// threads work on round r, it hands round r - 1 on). Item i gets buffer i % (2 * round) of
+/// `buffers` (grown if smaller), written again only after it was handed on. An exception of
+/// hand_on (a caller's sink) skips what is left and is thrown again once the threads joined.
 template <class Buffer, class Work, class HandOn>
 void run_in_ordered_rounds(int threads, std::size_t count, std::size_t round, std::vector<Buffer>& buffers, Work&& work,
                            HandOn&& hand_on) {

@@ -54,11 +54,10 @@ struct PairAppender {
 [[nodiscard]] const PairAppender* appender_behind(const PairSink& sink) noexcept;
 
 /// Hands pairs to the caller's sink in chunks of the settings' size: one pair at a time (the
-/// paper's pipeline) or a run of pairs already in (a < b) order (the persistent pipeline, whose
-/// runs go to the sink without another copy where they fill whole chunks). Where the sink is a
-/// PairAppender (detect() into a vector), the pairs are written into the caller's vector itself,
-/// a room of kDirectRoom pairs at a time: each pair is written once, not into a chunk and then
-/// copied.
+/// paper's pipeline) or runs already in (a < b) order (the persistent pipeline; a run that fills
+/// whole chunks goes to the sink without another copy). Where the sink is a PairAppender, the
+/// pairs are written into the caller's vector itself, kDirectRoom at a time: once, not into a
+/// chunk and then copied.
 class PairOutput {
 public:
     /// `chunk` is the caller's buffer, kept between detections so that none allocates it again.

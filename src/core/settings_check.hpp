@@ -14,27 +14,24 @@ namespace smb::detail {
 
 inline constexpr std::size_t kMaxThreads = 1024;
 
-/// Throws ArgumentError naming the first shared field that does not fit, as a field of
+/// Throws ArgumentError naming the first field the two share that does not fit, as a field of
 /// `settings_name` (the class the caller handed over: the message names what they wrote).
-inline void check_detection_settings(const DetectionSettings& settings, const std::string& settings_name) {
+template <class Settings>
+void check_shared_settings(const Settings& settings, const std::string& settings_name) {
     if (settings.target_cell_population == 0)
         throw ArgumentError(settings_name + "::target_cell_population must be at least 1");
     if (settings.pair_chunk_size == 0) throw ArgumentError(settings_name + "::pair_chunk_size must be at least 1");
     if (settings.threads > kMaxThreads)
         throw ArgumentError(settings_name + "::threads must be at most " + std::to_string(kMaxThreads) +
                             " (0: as many as OpenMP offers), not " + std::to_string(settings.threads));
-}
-
-/// Throws ArgumentError unless `skin` is finite and not negative.
-inline void check_skin(double skin, const std::string& settings_name) {
-    if (!(skin >= 0) || !std::isfinite(skin))
-        throw ArgumentError(settings_name + "::skin must be finite and at least 0, not " + shortest_number(skin));
+    if (!(settings.skin >= 0) || !std::isfinite(settings.skin))
+        throw ArgumentError(settings_name + "::skin must be finite and at least 0, not " +
+                            shortest_number(settings.skin));
 }
 
 /// `settings`, or ArgumentError naming the first field that does not fit.
 [[nodiscard]] inline WorldSettings validated_settings(const WorldSettings& settings) {
-    check_detection_settings(settings, "WorldSettings");
-    check_skin(settings.skin, "WorldSettings");
+    check_shared_settings(settings, "WorldSettings");
     if (settings.pipeline != Pipeline::persistent_cuts && settings.pipeline != Pipeline::paper_lists)
         throw ArgumentError("WorldSettings::pipeline is not a known Pipeline");
     if (settings.segment_rule != SegmentRule::from_count && settings.segment_rule != SegmentRule::twice_largest_box)
@@ -46,8 +43,7 @@ inline void check_skin(double skin, const std::string& settings_name) {
 
 /// `settings`, or ArgumentError naming the first field that does not fit.
 [[nodiscard]] inline DetectorSettings validated_settings(const DetectorSettings& settings) {
-    check_detection_settings(settings, "DetectorSettings");
-    check_skin(settings.skin, "DetectorSettings");
+    check_shared_settings(settings, "DetectorSettings");
     return settings;
 }
 

@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // How BoxStore::compact() renumbered the slots: every old slot's new slot, or kNoSlot for a
-// removed box. The compaction moves few boxes (box_store.hpp), so most slots keep their number;
-// the map says so with a bit per slot below the moved range and a table for the range itself,
-// instead of an array of every slot: a pipeline folds it into its lists in the lists' order,
-// which is random in slots, and at 10M boxes a 40 MB array read in that order missed the cache
-// and the TLB on nearly every entry.
+// removed box. The compaction moves few boxes, so the map is a bit per slot below the moved
+// range and a table for the range, not an array of every slot: a pipeline reads it in its lists'
+// order, random in slots, and at 10M boxes a 40 MB array read so missed the cache and the TLB on
+// nearly every entry.
 
 #include <cstddef>
 #include <cstdint>
@@ -34,10 +33,9 @@ public:
         return above < moved_.size() ? moved_[above] : kNoSlot;
     }
 
-    /// Calls change(old, now) for every slot that was removed (now == kNoSlot) or moved: first
-    /// the removed slots below the moved range, then the moved range in ascending old slots.
-    /// An array indexed by slot can follow the compaction in place in that order (a box only
-    /// moves down, into a slot already visited).
+    /// Calls change(old, now) for every slot removed (now == kNoSlot) or moved: first the removed
+    /// slots below the moved range, then the moved range by ascending old slot, an order in which
+    /// an array indexed by slot can follow in place (a box only moves down, to a slot visited).
     template <class Change>
     void for_each_change(Change&& change) const {
         for (std::size_t w = 0; w < removed_below_.size(); ++w) {

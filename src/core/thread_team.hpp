@@ -15,9 +15,9 @@
 
 namespace smb::detail {
 
-/// DetectionSettings::threads, 0 for as many as OpenMP offers; 1 without OpenMP. this_thread():
-/// the calling thread's number in the parallel region under way (0 outside one, or without
-/// OpenMP); team_size(): the number of threads in it (1 then).
+/// DetectionSettings::threads (0: as many as OpenMP offers; 1 without OpenMP); the calling
+/// thread's number in the parallel region under way and the number of threads in it (0 and 1
+/// outside one, or without OpenMP).
 #ifdef _OPENMP
 [[nodiscard]] inline int thread_count(const DetectionSettings& settings) noexcept {
     return std::max(1, settings.threads == 0 ? omp_get_max_threads() : static_cast<int>(settings.threads));

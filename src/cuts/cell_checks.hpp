@@ -48,10 +48,10 @@ public:
     /// Pairs one column may hold while the threads check a round (4 MiB); see in_ordered_rounds().
     static constexpr std::size_t kBlockPairCap = tuning::block_pair_cap;
 
-    /// Reports every pair of the cells, and then of the oversized boxes, to `report` (report(a, b)
-    /// for single pairs, report.append(pairs) for runs), on `threads` threads. Writes to `home`
-    /// every box once: each cell's home boxes (those whose lower corner it holds), cell by cell,
-    /// then the oversized boxes. Returns the insertion-sort moves of the swept cells.
+    /// Reports every pair of the cells, then of the oversized boxes (report(a, b), or
+    /// report.append(pairs) for runs), on `threads` threads. Writes every box once to `home`: each
+    /// cell's home boxes (whose lower corner it holds), cell by cell, then the oversized boxes.
+    /// Returns the insertion-sort moves of the swept cells.
     template <class Checked, class Report>
     std::size_t check(const Checked& checked, float sure_margin, int threads, Report& report,
                       BulkVector<Position>& home) {
@@ -138,12 +138,10 @@ std::size_t CellChecks<Real, Dim>::check_cells(const Checked& checked, float sur
 
 /// Runs work(item, collect, home, give_up) for the items 0..count-1 (columns, oversized boxes)
 /// so that their pairs reach `report`, and their home boxes `home`, in item order whatever the
-/// number of threads. One thread: straight through. Several: rounds of items shared among the
-/// threads, each item's pairs buffered; while the threads work on one round, the calling thread
-/// first hands the previous round on (so the caller's sink only ever runs on the thread that
-/// called detect(), and the hand-over overlaps the work). An item whose pairs outgrow its
-/// buffer's cap (a crowd of identical boxes: billions of pairs) gives up and is run again alone
-/// when its turn comes, straight into the caller's sink, so memory stays bounded.
+/// number of threads: straight through on one, else in ordered rounds (ordered_rounds.hpp), so
+/// that the caller's sink runs only on the thread that called detect(). An item whose pairs
+/// outgrow kBlockPairCap (a crowd of identical boxes) gives up and is run again alone, straight
+/// into the sink, when its turn comes.
 template <std::floating_point Real, int Dim>
 template <class Checked, class Report, class Work>
 std::size_t CellChecks<Real, Dim>::in_ordered_rounds(const Checked& checked, std::size_t count, Report& report,

@@ -12,7 +12,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <type_traits>
 #include <vector>
 
 #include "core/assert.hpp"
@@ -115,11 +114,10 @@ public:
     }
 
     /// copy() where the order follows no cell (the first detection, new cuts, boxes that jumped
-    /// across cells: column_presort.hpp): the order is
-    /// rewritten as the slots grouped by column_of(held box) (< `columns`), in slot order within
-    /// a column, and every box is copied to its column's run by a counting sort. The caller's
-    /// boxes are read twice in order and each held box written once, where sorting the order
-    /// first and then copying in it would read every box from a different place.
+    /// across cells: column_presort.hpp): the order becomes the slots grouped by column_of(held
+    /// box) (< `columns`), in slot order within a column, and each box is copied to its column's
+    /// run by a counting sort: the caller's boxes are read twice in order, where sorting the
+    /// order first and copying in it would read every box from a different place.
     template <class ColumnOf>
     void copy_by_column(std::span<const Box<Input, Dim>> store_boxes, std::span<const BoxId> store_ids,
                         const std::array<Input, Dim>& origin, std::size_t columns, ColumnOf&& column_of, int threads) {
@@ -184,10 +182,10 @@ public:
     [[nodiscard]] BulkVector<Position>& next() noexcept { return next_order_; }
 
     /// Makes next() the order: the check wrote positions in the copy, the order holds their slots.
-    /// Where the ids were given and each slot keeps its id from one detection to the next but
-    /// where fold_removals() moves it (`ids_kept`, a World's store), the ids are carried into the
-    /// next order too, when all fit 32 bits, in `carried_ids` (room the caller leaves alone until
-    /// the next copy): the next copy then reads them in order instead of gathering them by slot.
+    /// Where each slot keeps its given id to the next detection but where fold_removals() moves
+    /// it (`ids_kept`, a World's store), the ids, when all fit 32 bits, are carried into
+    /// `carried_ids` (room the caller leaves alone until the next copy) in the next order, so
+    /// that the next copy reads them in order instead of gathering them by slot.
     void advance(int threads, bool ids_kept, BulkVector<std::uint32_t>& carried_ids) {
         const std::size_t n = next_order_.size();
         const auto count = static_cast<std::ptrdiff_t>(n);

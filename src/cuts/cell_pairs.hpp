@@ -1,21 +1,17 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The cell check of the persistent-cut pipeline: the pairs of one cell, found in one of two ways
-// by the number m of boxes registered in the cell. Either way the boxes are copied out one array
-// per coordinate (as floats, cell_scratch.hpp), so that the check reads small contiguous arrays,
-// eight candidates at a time (cell_rows.hpp).
+// by the number m of boxes registered in it. Either way the boxes are copied out one float array
+// per coordinate (cell_scratch.hpp), read eight candidates at a time (cell_rows.hpp), and the
+// hits written down without a branch (a compress through a permutation table), reported after.
 //
-// - Up to kAllPairsLimit boxes, in cells cut on every axis (the cuts aim at about 24 boxes a
-//   cell, about 46 registered in 3D): every pair is tested, in the order the boxes were
-//   registered. No keys, no sort, and loops whose lengths do not depend on the boxes' sizes,
-//   which a sweep's scan does, at one mispredicted exit per box.
-// - Beyond, and in every column (the default cells: x left uncut, level_regrouping.hpp): the
-//   boxes get local numbers (the global-local map of the paper), are sorted on x (cell_x_order.hpp),
-//   and are swept on x with direct tests on
-//   the other axes. A long column swept on x tests about as many candidates per box as boxes
-//   reach it along x, where a cube of the same population tests every box of the cube.
-// Either way the hits of float boxes are written down without a branch (a compress through a
-// permutation table) and reported after the rows.
+// - Up to kAllPairsLimit boxes, in cells cut on every axis (about 46 registered in 3D): every
+//   pair is tested, as registered. No keys, no sort, and loops whose lengths do not depend on the
+//   boxes' sizes, as a sweep's scan does, at one mispredicted exit per box.
+// - Beyond, and in every column (x left uncut, level_regrouping.hpp): the boxes get local numbers
+//   (the paper's global-local map), are sorted on x (cell_x_order.hpp) and swept on x with direct
+//   tests on the other axes. A long column swept on x tests about as many candidates per box as
+//   boxes reach it along x, where a cube of the same population tests every box of the cube.
 //
 // A pair shared by several cells is reported only by the cell that holds the lower corner of the
 // two boxes' intersection, p[k] = max(a.min[k], b.min[k]). This replaces the paper's mask array:
@@ -52,13 +48,10 @@ class CellPairs {
 public:
     static constexpr std::uint32_t kAllInside = CellRows<Dim>::kAllInside;
 
-    /// Cells of up to this many registered boxes are checked by testing every pair: faster than
-    /// the sweep at the cells' usual ~46 boxes, and still at ~130 (a target population of 64);
-    /// its cost grows as m^2 / 16 lane groups, so crowds are swept.
+    /// Cells of up to this many registered boxes are checked by testing every pair.
     static constexpr std::size_t kAllPairsLimit = tuning::all_pairs_limit;
-    /// check_all_pairs() packs a pair of local numbers as i << 16 | j in the lanes' signed
-    /// 32-bit integers: it takes cells of up to this many boxes (the pipeline's are at most
-    /// kAllPairsLimit).
+    /// check_all_pairs() packs local numbers as i << 16 | j in the lanes' signed 32-bit
+    /// integers: it takes cells of up to this many boxes (the pipeline's, up to kAllPairsLimit).
     static constexpr std::size_t kMostPaired = std::size_t{1} << 15;
 
     /// Reports every pair of `entries` (positions of the boxes registered in the cell) whose
@@ -156,9 +149,8 @@ public:
         }
     }
 
-    /// After check_by_sweep(): the positions of the cell in x order (by min x), and a bound
-    /// on the x extent of its boxes (at least every box's max x - min x); valid until the next
-    /// check.
+    /// After check_by_sweep(): the cell's positions in x order and a bound on its boxes' x
+    /// extent (CellXOrder::widest_x()); valid until the next check.
     [[nodiscard]] std::span<const std::uint32_t> swept_positions() const noexcept {
         return {rows_.columns.position, x_order_.size()};
     }

@@ -3,8 +3,6 @@
 // The x order of a swept cell (a column, or a crowded cell where x is cut; cell_pairs.hpp): the
 // keys (monotone 32-bit key of min x << 32 | local number) of the cell's boxes in increasing
 // order, boxes of equal keys ordered by exact min x and id, and a bound on the boxes' x extent.
-// The cell's list follows last step's order, so it arrives as a few runs in x order; a
-// counting pass spreads it over buckets of x and DIS with the single increment 1 finishes it.
 
 #include <algorithm>
 #include <cmath>
@@ -58,15 +56,12 @@ public:
         }
     }
 
-    // Writes to order_ the cell's keys (x key << 32 | local number) in increasing order and
-    // returns the insertion-sort moves. The list is not one sorted run: it follows last step's
-    // order, cell by cell, so a cell's boxes come as a few runs in x order, one from each cell
-    // they were at home in (a column takes boxes from its neighbours on every axis it is cut
-    // on), each run sorted, the runs interleaved in x. So the keys are first spread over about
-    // m buckets of equal width in x by a counting pass, which leaves each box among the few of
-    // its bucket, and DIS with the single increment 1 then sorts those. A cell whose keys
-    // crowd into a few buckets (equal or clustered coordinates) stops the insertions once they
-    // pass a bound and is sorted outright: the result is the same sorted list either way.
+    // Writes to order_ the cell's keys in increasing order and returns the insertion-sort moves.
+    // The list follows last step's order, so a cell's boxes come as a few sorted runs interleaved
+    // in x, one from each cell they were at home in. So a counting pass first spreads the keys
+    // over about m buckets of equal width in x, leaving each box among the few of its bucket, and
+    // DIS with the single increment 1 sorts those. A cell whose keys crowd into a few buckets
+    // stops the insertions past a bound and is sorted outright: the same sorted list either way.
     std::size_t sort(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes) {
         const std::size_t m = entries.size();
         order_.resize(m);

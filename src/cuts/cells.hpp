@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The cells of the persistent-cut pipeline's last regrouping, and the questions asked of them:
-// which cells a box covers, and which boxes registered there overlap a query box. The oversized
-// boxes' check asks them, and so does the skin list, which finds the neighbours of a box that
-// left its skin this way, without a detection of its own.
+// The cells of the persistent-cut pipeline's last regrouping: which cells a box covers, and which
+// boxes registered there overlap a query box. The oversized boxes' check asks them, and so does
+// the skin list, for the neighbours of a box that left its skin, without a detection of its own.
 
 #include <algorithm>
 #include <cmath>

@@ -1,20 +1,16 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The boxes copied grouped by column again, while they move across cells at every step (the
+// The boxes copied grouped by column again while they move across cells at every step (the
 // paper's Λ = 0.1: every box jumps up to a tenth of the scene).
 //
-// The persistent cuts read the boxes in last step's cell order (cell_order.hpp), which is the
-// order of this step's cells only while few boxes changed cell. Where most did, each column's
-// boxes lie all over the ordered copy, and every pass after the copy (the levels and the cell
-// check) misses the cache on nearly every box. The detection then copies the boxes as a cold
-// one does (CellOrder::copy_by_column): a counting sort by the column that holds each box's
-// lower corner against the kept planes, the caller's boxes read twice in order and each written
-// once to its column's run, where a gather in last step's order would read every box from a
-// different place. Where boxes keep their cells, last step's order is already that (and x-sorted
-// within each column), so the regrouped copy is left out: it starts when the first level's hints
-// miss on more than tuning::column_copy_start_misses of the boxes, and stops when fewer than
-// tuning::column_copy_stop_changed of a sample of them changed column since the last one. Only
-// speed depends on it: the order is any order of the slots.
+// Last step's cell order (cell_order.hpp) is this step's only while few boxes changed cell. Where
+// most did, each column's boxes lie all over the ordered copy, and every later pass misses the
+// cache on nearly every box. The detection then copies the boxes as a cold one does
+// (CellOrder::copy_by_column()), reading the caller's boxes in order. Where boxes keep their
+// cells, last step's order is that already (and x-sorted), so the regrouped copy starts only when
+// the first level's hints miss on more than tuning::column_copy_start_misses of the boxes, and
+// stops when fewer than tuning::column_copy_stop_changed of a sample changed column since the
+// last one. Only speed depends on it: the order is any order of the slots.
 
 #include <algorithm>
 #include <array>
@@ -50,11 +46,10 @@ public:
     }
 
     /// Before a detection that copies by column: the columns of a sample of `input` (one box in
-    /// tuning::column_copy_sample_stride), each compared with the column of the same slot at the
-    /// last call (a slot that a removal renumbered, or that arrived, compares against another
-    /// box's column or none: a few, and the share is a judgement of speed only). Stops the
-    /// regrouped copy, from the next detection on, once too few of them changed
-    /// (tuning::column_copy_stop_changed).
+    /// tuning::column_copy_sample_stride), each compared with the same slot's at the last call (a
+    /// slot renumbered or arrived since compares against another box's or none: a few, and only
+    /// speed depends on it). Stops the regrouped copy from the next detection on once too few
+    /// changed.
     void note_columns(std::span<const Box<Input, Dim>> input, const std::array<Input, Dim>& origin,
                       const CutTree<Real, Dim>& cuts) {
         constexpr std::size_t stride = tuning::column_copy_sample_stride;

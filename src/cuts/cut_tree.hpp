@@ -18,7 +18,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -91,6 +90,13 @@ template <std::floating_point Real>
     const bool past_after = next[1] <= max;
     return lo + (past_next ? 1U : 0U) + (past_next && past_after ? 1U : 0U);
 }
+
+/// The segments an entry touches: first | last << 16.
+struct SegmentRange {
+    static constexpr std::uint32_t lo_of(std::uint32_t range) noexcept { return range & 0xFFFFU; }
+    static constexpr std::uint32_t hi_of(std::uint32_t range) noexcept { return range >> 16; }
+    static constexpr std::uint32_t kNone = 1;  // first segment 1, last 0: registered nowhere
+};
 
 template <std::floating_point Real, int Dim>
 class CutTree {
@@ -173,12 +179,10 @@ public:
     }
     [[nodiscard]] bool was_cut(int level, std::size_t group) const noexcept { return limit_[level][group] != 0; }
 
-    /// The axial cut: the keys in `selector` (the lower coordinates of the group's boxes, in
-    /// any order; they are reordered) are split into k segments of equal counts. Equal keys
-    /// always share a segment, since a cut is a coordinate value, so a long run of equal keys may
-    /// leave segments empty and one segment full. Planes closer than `min_gap` to the plane kept
-    /// before them are dropped, and the dropped ones become +inf planes at the end (empty last
-    /// segments): see cut_group(). The caller then sets the group's band with set_band().
+    /// The axial cut: the keys in `selector` (the lower ends of the group's boxes; reordered)
+    /// split into k segments of equal counts. Equal keys share a segment (a cut is a value), so a
+    /// run of them may leave segments empty and one full. Planes closer than `min_gap` to the
+    /// last one kept are dropped (space_planes()). The caller then sets the band (set_band()).
     void cut(int level, std::size_t group, QuantileSelector<Real>& selector, Real min_gap = Real{0}) {
         const std::uint32_t k = k_[level];
         Real* out = cuts_[level].data() + group * (k + 1);
@@ -192,20 +196,17 @@ public:
         }
     }
 
-    /// The axial cut of a group of n boxes, box j's lower end given by key_at(j) and its extent
-    /// along the axis by extent_at(j). The keys are gathered into `selector`: all of them,
-    /// or, in a group of more than twice kSamplePerSegment keys per segment, those of the boxes
-    /// at floor(i n / s) for s = kSamplePerSegment * k, which spares copying every key.
-    /// Deterministic. An order of the boxes that aliases with the stride can only make the
-    /// planes uneven, which costs time and is corrected by the next cut; it never changes the
-    /// pairs.
+    /// The axial cut of a group of n boxes, box j's lower end key_at(j) and its extent
+    /// extent_at(j). The keys go into `selector`: all of them, or, past twice kSamplePerSegment
+    /// per segment, those of boxes floor(i n / s), s = kSamplePerSegment * k. Deterministic; an
+    /// order that aliases with the stride only makes the planes uneven, which the next cut
+    /// corrects.
     ///
-    /// Equal counts alone give segments thinner than the boxes where the boxes lie in a layer a
-    /// few boxes deep (a pile on a floor): most boxes then span more than two segments and leave
-    /// the levels as oversized boxes, whose check is the slow path. So the planes are kept at
-    /// least the group's typical extent apart (its upper quartile, from a sample): boxes up to
-    /// that extent span at most two segments, and the axis gets fewer, fuller segments instead.
-    /// Where the boxes are small against the segments (the usual case) no plane is dropped.
+    /// Equal counts alone give segments thinner than the boxes in a layer a few boxes deep (a pile
+    /// on a floor): most boxes would span more than two segments and leave the levels for the
+    /// slow oversized check. So the planes are kept the group's typical extent apart (the upper
+    /// quartile of a sample): the axis gets fewer, fuller segments. Boxes small against the
+    /// segments (the usual case) drop no plane.
     template <class KeyAt, class ExtentAt>
     void cut_group(int level, std::size_t group, std::size_t n, KeyAt&& key_at, ExtentAt&& extent_at,
                    QuantileSelector<Real>& selector) {
@@ -233,15 +234,8 @@ public:
             level, group, n, key_at, [](std::size_t) { return Real{0}; }, selector);
     }
 
-    /// Boxes sampled for a group's typical extent (cut_group()).
+    /// Boxes sampled for a group's typical extent; keys per segment of a sampled cut.
     static constexpr std::size_t kExtentSample = tuning::extent_sample;
-
-    /// A group with more than twice this many keys per segment takes its quantiles from an
-    /// evenly spaced sample of this many keys per segment instead of from all of them
-    /// (cut_group). The planes only need to be about even: the band (set_band) is measured on the
-    /// real counts, and a sample of 256 per segment is within about 6% of the true quantiles. It
-    /// makes the first cuts of a large world (1M boxes: 1M keys on level 0, 28k per group on level
-    /// 1) several times cheaper.
     static constexpr std::size_t kSamplePerSegment = tuning::sample_per_segment;
 
     /// Sets the band of a group just cut: its fullest segment may grow by half (and at least

@@ -25,13 +25,6 @@
 
 namespace smb::detail {
 
-/// The segments an entry touches: first | last << 16.
-struct SegmentRange {
-    static constexpr std::uint32_t lo_of(std::uint32_t range) noexcept { return range & 0xFFFFU; }
-    static constexpr std::uint32_t hi_of(std::uint32_t range) noexcept { return range >> 16; }
-    static constexpr std::uint32_t kNone = 1;  // first segment 1, last 0: registered nowhere
-};
-
 /// What a box is, per position, on the levels built so far (written through atomic_ref).
 inline constexpr std::uint8_t kMarkedOversized = 1;     // found oversized on the level being built
 inline constexpr std::uint8_t kPublishedOversized = 2;  // found oversized on an earlier level
@@ -75,11 +68,9 @@ public:
                          Worker& worker, [[maybe_unused]] std::uint8_t* oversized) const;
 
     /// Whether the next detection locates the entries of `level` without the hint, from the misses
-    /// the workers counted on it (and reset). The hint (the previous entry's segment, or one beside
-    /// it) saves a search where entries follow last step's cells, and costs a mispredicted branch
-    /// besides the search where they do not: boxes that move across cells every step, as at
-    /// Λ = 0.1, or that all jumped at once. Only time depends on this; the segments are the same
-    /// either way.
+    /// the workers counted on it (and reset). The hint saves a search where entries follow last
+    /// step's cells, and costs a mispredicted branch besides the search where they do not (boxes
+    /// that cross cells every step, as at Λ = 0.1, or all jumped at once). Only time depends on it.
     void judge_hints(int level, std::uint32_t segments, PerThread<Worker>& workers) {
         std::size_t located = 0;
         std::size_t misses = 0;

@@ -1,17 +1,14 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The persistent-cut pipeline as a World or Detector of double boxes runs it: holding floats
-// (the boxes shifted to the middle of the scene and rounded, held_box.hpp) wherever floats
-// resolve the scene, and a copy of the doubles where they would not (scene_bounds.hpp judges).
-// Floats halve the bytes every pass moves and double the boxes a vector compares at once; the
-// pairs stay exact, since every pair the floats cannot settle is tested again on the input.
-// Float boxes are held as they are.
+// (held_box.hpp) wherever they resolve the scene, a copy of the doubles where they would not
+// (scene_bounds.hpp judges). Floats halve the bytes every pass moves and double the boxes a
+// vector compares at once. Float boxes are held as they are.
 
 #include <array>
 #include <cstddef>
 #include <span>
 #include <type_traits>
-#include <vector>
 
 #include "core/assert.hpp"
 #include "core/scene_bounds.hpp"
@@ -43,19 +40,19 @@ public:
     [[nodiscard]] std::size_t retested() const noexcept { return retested_; }
 
     /// Chooses what the next detection of `boxes` (not empty), whose bounds are `bounds`, holds.
-    /// Judges the scene again when it left the region of the last judgement, when the number of
-    /// boxes moved by more than a quarter (the cut counts change then anyway), and every
-    /// kJudgeEvery detections (a scene of points may have grown into boxes). A new origin forgets
-    /// the cuts, so a scene still held as floats and still inside its region keeps its origin;
-    /// switching gives the other pipeline's memory back.
+    /// Judges the scene again when it left the last judgement's region, when the number of boxes
+    /// moved by more than a quarter (the cut counts change then anyway), and every
+    /// tuning::judge_precision_every detections. A new origin forgets the cuts, so a scene still
+    /// held as floats inside its region keeps its origin; switching gives the other pipeline's
+    /// memory back.
     void judge(std::span<const Box<Real, Dim>> boxes, const SceneBounds<Real, Dim>& bounds) {
         if constexpr (!kMayRound) {
             precision_ = HeldPrecision::floats;
         } else {
             const std::size_t n = boxes.size();
             const bool inside = judged_ && bounds.within(judgement_.region);
-            const bool stale =
-                !inside || 4 * n > 5 * judged_boxes_ || 5 * n < 4 * judged_boxes_ || ++since_judged_ >= kJudgeEvery;
+            const bool stale = !inside || 4 * n > 5 * judged_boxes_ || 5 * n < 4 * judged_boxes_ ||
+                               ++since_judged_ >= tuning::judge_precision_every;
             if (!stale) return;
             FloatResolution<Real, Dim> judged = judge_float_resolution(boxes, bounds);
             judged_ = true;
@@ -97,31 +94,24 @@ public:
         exact_.detect(std::span<const Box<Real, Dim>>{}, {}, settings, report, profile);
     }
 
-    /// Boxes from slot `n` on are gone (a Detector's caller passed fewer than last time).
+    // The order's life between detections (cell_order.hpp), in both pipelines or the one in use.
     void forget_slots_from(std::size_t n) {
         exact_.forget_slots_from(n);
         rounded_.forget_slots_from(n);
     }
-
-    /// Drops removed slots from the order and renumbers the others (BoxStore::compact()).
     void fold_removals(const SlotRenumbering& renumbering) {
         exact_.fold_removals(renumbering);
         rounded_.fold_removals(renumbering);
     }
-
-    /// The caller renumbered its boxes by order() (PersistentCutPipeline::follow_own_order()).
     void follow_own_order() {
         if (uses_rounded())
             rounded_.follow_own_order();
         else
             exact_.follow_own_order();
     }
-
-    /// The order the last detection left: every slot once, cell by cell.
     [[nodiscard]] std::span<const Slot> order() const noexcept {
         return uses_rounded() ? rounded_.order() : exact_.order();
     }
-    /// Slots the pipeline in use lists.
     [[nodiscard]] std::size_t listed() const noexcept { return uses_rounded() ? rounded_.listed() : exact_.listed(); }
 
     /// Gives the pipelines' memory back (their cuts and order too); keeps the judgement.
@@ -151,8 +141,6 @@ private:
     using RoundedPipeline = std::conditional_t<kMayRound, PersistentCutPipeline<float, Dim, Real>, ExactPipeline>;
 
     [[nodiscard]] bool uses_rounded() const noexcept { return kMayRound && precision_ == HeldPrecision::floats; }
-
-    static constexpr std::size_t kJudgeEvery = tuning::judge_precision_every;
 
     ExactPipeline exact_;
     RoundedPipeline rounded_;

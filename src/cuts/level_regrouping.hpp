@@ -82,7 +82,6 @@ public:
     /// Whether the deepest level (x) is left uncut, so that each cell is a whole column of the
     /// level above, checked by a sweep on x (cell_pairs.hpp); else x is cut like every axis.
     void set_columns(bool columns) noexcept { columns_ = columns; }
-    [[nodiscard]] bool columns() const noexcept { return columns_; }
 
     /// Every level locates without the hint, or every level tries it again (a cold detection).
     void set_without_hint(bool without) noexcept { locator_.set_without_hint(without); }
@@ -151,10 +150,9 @@ private:
     std::vector<Real> widest_;  // columns: per cell, Cells::widest
 };
 
-/// The deepest level of columns: every group whole, its entries all in its first segment. No box
-/// is located: the entries of the level above are the cells' entries where they are, each
-/// group's first segment holding them and its other segments empty. The other list, which
-/// holds the level before, keeps its own size, not the cells'.
+/// The deepest level of columns: every group whole, no box located. The entries of the level
+/// above are the cells' where they are, in each group's first segment, the others empty; the
+/// other list, which holds the level before, keeps its own size, not the cells'.
 template <std::floating_point Real, int Dim>
 void LevelRegrouping<Real, Dim>::keep_columns_whole(CutTree<Real, Dim>& cuts, std::span<const std::uint32_t> in_begin,
                                                     std::vector<std::uint32_t>& out_begin) {

@@ -3,25 +3,23 @@
 // The cell check's keys: coordinates as floats, and as 32-bit keys whose unsigned order is the
 // coordinates' order, for the sort on x of a crowded cell.
 
-#include <algorithm>
 #include <bit>
 #include <concepts>
 #include <cstdint>
-#include <limits>
 #include <type_traits>
+
+#include "core/held_box.hpp"
 
 namespace smb::detail {
 
-/// `value` as the nearest float; beyond the float range, the largest float of its sign (a
-/// plain conversion would be undefined there). Rounding never reverses an order: x <= y gives
-/// to_float(x) <= to_float(y), which is all the cell check asks of it.
+/// `value` as a float: itself, or clamped_float() of a double. Rounding never reverses an
+/// order: x <= y gives to_float(x) <= to_float(y), which is all the cell check asks of it.
 template <std::floating_point Real>
 [[nodiscard]] inline float to_float(Real value) noexcept {
     if constexpr (std::is_same_v<Real, float>) {
         return value;
     } else {
-        constexpr auto top = static_cast<Real>(std::numeric_limits<float>::max());
-        return static_cast<float>(std::clamp(value, -top, top));
+        return clamped_float(value);
     }
 }
 

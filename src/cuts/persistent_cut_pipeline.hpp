@@ -1,25 +1,15 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The default pipeline: SMB's levels of axial cuts, with the cuts kept from one step to the next
-// (cut_tree.hpp) so that every level is a linear bucketing pass instead of a sort.
-//
-// Per detection:
-//   1. The boxes are copied in last step's cell order (cell_order.hpp); where there is none
-//      (the first detection), grouped by column against planes cut from a sample of them
-//      (sampled_cuts.hpp).
-//   2. Level l (axis Dim-1-l): every box of every group is located against the group's planes
-//      (group_locator.hpp) and registered, by a stable counting sort (the singular regrouping:
-//      index array of counts, then a stack of offsets), in each segment its [min, max] touches
-//      (level_regrouping.hpp). A group whose fullest segment left its band is cut again first
-//      (the axial cut, cut_tree.hpp). A box that spans more than two segments is oversized: it
-//      leaves the levels and is checked apart.
-//      By default the deepest level (x) is left uncut: each cell is a whole column of the level
-//      above, registered as it came, with no pass of its own.
-//   3. Each cell of the deepest level is checked by cell_pairs.hpp (a sort and a sweep on x for
-//      a column or a crowded cell, else every pair), which also writes the next order
-//      (cell_checks.hpp). A column is left in x order, so that a query box reads only the part
-//      of it the query reaches along x (cells.hpp).
-//   4. Oversized boxes are tested against the cells they cover and against one another.
+// (cut_tree.hpp) so that every level is a linear bucketing pass instead of a sort. Per detection:
+//   1. the boxes are copied in last step's cell order (cell_order.hpp), or, where it follows no
+//      cell, grouped by column (sampled_cuts.hpp, column_presort.hpp);
+//   2. each level registers every box in the segments it touches (level_regrouping.hpp); a box
+//      spanning more than two is oversized. By default x is left uncut: each cell is a whole
+//      column of the level above, with no pass of its own;
+//   3. each cell is checked (cell_checks.hpp, cell_pairs.hpp), which writes the next order; a
+//      column is left in x order, so that a query reads only what it reaches along x (cells.hpp);
+//   4. oversized boxes are tested against the cells they cover and against one another.
 // docs/algorithm.md gives the proof that each overlapping pair is reported exactly once.
 
 #include <algorithm>
@@ -31,7 +21,6 @@
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <vector>
 
 #include "core/held_box.hpp"
 #include "core/id_index.hpp"
@@ -64,36 +53,27 @@ public:
         regrouping_.set_columns(shape == CellShape::columns);
     }
 
-    /// Drops removed slots from the order and renumbers the others (BoxStore::compact(), which
-    /// leaves the listed boxes in the first slots).
+    // The order between detections (CellOrder); the carried ids lie in the spare list.
     void fold_removals(const SlotRenumbering& renumbering) {
         cell_order_.fold_removals(renumbering, regrouping_.spare_list());
     }
-
-    /// The caller renumbered its boxes by order(): the box at order()[p] is now at slot p.
     void follow_own_order() { cell_order_.follow_own_order(); }
-
-    /// Slots [0, listed()) are in the order; later ones arrived since the last detection.
     [[nodiscard]] std::size_t listed() const noexcept { return cell_order_.listed(); }
-
-    /// Forgets the slots from `n` on: a Detector's caller passed fewer boxes than last time.
     void forget_slots_from(std::size_t n) { cell_order_.forget_slots_from(n); }
+    [[nodiscard]] std::span<const Slot> order() const noexcept { return cell_order_.order(); }
 
     /// Reports every overlapping pair of `input` once (report.append(pairs in a < b order) for
     /// runs, report(id_a, id_b) for single pairs): box `slot` of `input` under id ids[slot], or
-    /// under id `slot` where `ids` is empty. Where the pipeline holds floats of double input, the held
-    /// boxes are shifted by set_origin()'s origin and rounded (held_box.hpp), and each pair they
-    /// cannot settle is tested again on `input`. `ids_kept`: ids[slot] names the box the last
-    /// detection saw at `slot`, but where fold_removals() moved it (a World's store).
+    /// under id `slot` where `ids` is empty. Floats held for double input are shifted by the
+    /// origin (set_origin()) and rounded (held_box.hpp), each pair they cannot settle tested
+    /// again on `input`. `ids_kept`: ids[slot] names the box the last detection saw at `slot`,
+    /// but where fold_removals() moved it (a World's store).
     template <class Report>
     void detect(std::span<const Box<Input, Dim>> input, std::span<const BoxId> ids, const DetectionSettings& settings,
                 Report& report, DetectProfile& profile, bool ids_kept = false);
 
     /// Whether the next detection copies the boxes grouped by column (column_presort.hpp).
     [[nodiscard]] bool presorting() const noexcept { return presort_.sorting(); }
-
-    /// The order the last detection left: every slot once, cell by cell.
-    [[nodiscard]] std::span<const Slot> order() const noexcept { return cell_order_.order(); }
 
     /// Where held coordinates start from (rounded input only); a new origin forgets every plane.
     void set_origin(const std::array<Input, Dim>& origin) {
@@ -110,8 +90,7 @@ public:
 
     /// Calls visit(slot) once for every box of the last detection whose held box overlaps `query`
     /// (closed), through the cells that `query` covers and the oversized boxes; valid until the
-    /// next detection or change. The skin list (skin_list.hpp) finds the neighbours of a box that
-    /// left its skin this way, without a detection of its own.
+    /// next detection or change (the skin list's neighbour search, cells.hpp).
     template <class Visit>
     void for_each_held_overlapping(const Box<Real, Dim>& query, Visit&& visit) const {
         SMB_ASSERT(!cell_order_.own_ids(), "the cells of a pipeline given ids are lent after it (spare_list())");
@@ -172,8 +151,7 @@ private:
     LevelRegrouping<Real, Dim> regrouping_;
     CellChecks<Real, Dim> checks_;
     ColumnPresort<Real, Dim, Input> presort_;
-    /// What the order follows: no cells at all (the first detection, a new origin; the order is
-    /// cold, and the detection copies the boxes grouped by column instead), or last step's cells.
+    /// What the order follows: no cell (cold: the first detection, a new origin) or last step's.
     enum class OrderState { fresh, follows_cells };
     OrderState order_state_ = OrderState::fresh;
 };
@@ -209,12 +187,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
     const std::uint32_t segments_before = planned_segments_;
     plan_segments(n, settings);
     threads_ = thread_count(settings);
-    // A cold order (first detection, new cut counts, new origin) follows no cell, and the cuts
-    // have no planes. Copied as it is, each cell's boxes would lie all over the copy, and every
-    // level after the first and every cell check would read them out of order (at 1M boxes in
-    // 3D, twice the time of a later detection). So the levels above the columns are cut from a
-    // sample of the input first (sampled_cuts.hpp), and the boxes are copied grouped by column
-    // by a counting sort, each column in one run, as a later detection has it.
+    // A cold order (first detection, new cut counts, new origin) follows no cell and the cuts
+    // have no planes: the levels above the columns are cut from a sample first, and the boxes
+    // copied grouped by column (sampled_cuts.hpp).
     const bool cold = order_state_ == OrderState::fresh || planned_segments_ != segments_before;
 
     Stopwatch phase{settings.profile};
@@ -260,10 +235,9 @@ void PersistentCutPipeline<Real, Dim, Input>::detect(std::span<const Box<Input, 
 #ifdef SMB_VALIDATE
     regrouping_.cells(cuts_).check_registrations(boxes, regrouping_.oversized_flags());
 #endif
-    // The check wrote positions in the ordered copy; the next order holds their slots. How far
-    // boxes moved in the order is no sign of motion (the boxes a step adds shift every later
-    // place by up to their number): the hint's judgement counts the misses instead. A next
-    // detection that copies by column reads the ids from the input: none are carried for it.
+    // How far boxes moved in the order is no sign of motion (the boxes a step adds shift every
+    // later place): the hint's judgement counts misses instead. A next detection that copies by
+    // column reads the ids from the input: none are carried for it.
     cell_order_.advance(threads_, ids_kept && !presort_.sorting(), regrouping_.spare_list());
     order_state_ = OrderState::follows_cells;
 }

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/tuning.hpp"
@@ -52,11 +53,7 @@ public:
     /// The keys of the group being cut; select() reorders them.
     std::vector<Real> keys;
 
-    /// Below this many keys the recursive selection is faster. Measured on fresh keys at every
-    /// call (repeating one input lets the branch predictor learn it and flatters the selection
-    /// by 6×), uniform floats, k = max(2, n / 24) (bench/bench_quantiles.cpp, medians of three):
-    /// 64 keys 0.08 µs against 0.71 µs for the radix sort; 128 keys 2.9 against 0.94; 1000 keys
-    /// 42 against 4.4 (double: 41 against 9.4).
+    /// Below this many keys the recursive selection is faster.
     static constexpr std::size_t kRadixFrom = tuning::quantile_radix_from;
 
     /// out[j-1] = the key of rank min(n-1, floor(j n / segments)) for j in [1, segments).
@@ -129,11 +126,7 @@ private:
             std::array<std::uint32_t, kBuckets>& offset = count[d];
             if (std::find(offset.begin(), offset.end(), static_cast<std::uint32_t>(n)) != offset.end()) continue;
             std::uint32_t sum = 0;
-            for (std::uint32_t& bucket : offset) {
-                const std::uint32_t here = bucket;
-                bucket = sum;
-                sum += here;
-            }
+            for (std::uint32_t& bucket : offset) sum += std::exchange(bucket, sum);
             for (std::size_t i = 0; i < n; ++i) {
                 const Key image = from[i];
                 to[offset[(image >> (kDigitBits * d)) & (kBuckets - 1)]++] = image;

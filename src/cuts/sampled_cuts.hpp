@@ -1,19 +1,17 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The first planes of the levels above the columns, cut from an evenly spaced sample of the
-// caller's boxes before the boxes are copied, where the cuts have no planes yet (the first
-// detection, a new number of segments, a new origin).
+// caller's boxes before they are copied, where the cuts have none (the first detection, a new
+// number of segments, a new origin).
 //
-// Without planes the boxes are copied in slot order, which follows no cell, and every level
-// after the first and every cell check then reads its boxes from all over the copy: at 1M
-// boxes in 3D the first detection took twice a later one, most of it waiting for memory. With
-// planes cut before the copy, the boxes are copied grouped by column (CellOrder::copy_by_column),
-// each column in one run, as a later detection has it. The sample makes cutting cheap: two
-// passes over a quarter of the boxes at 1M in 3D, each kept only as its interval on the axis
-// being cut, against a pass over every box per level. Its planes are as even as the levels' own
-// sampled cuts (kSamplePerSegment keys per segment); each group's band is set from the sample's counts scaled to the boxes,
-// and a group whose real counts leave it is cut again by the levels from all its entries.
-// Exactness never depends on the planes (cut_tree.hpp), only speed does.
+// Without planes the boxes are copied in slot order, which follows no cell, and every later pass
+// reads them from all over the copy: at 1M boxes in 3D the first detection took twice a later
+// one, mostly waiting for memory. With planes, the boxes are copied grouped by column
+// (CellOrder::copy_by_column()), as a later detection has them. The sample makes cutting cheap:
+// two passes over a quarter of the boxes at 1M in 3D, each kept only as its interval on the
+// axis cut, against a pass over every box per level. Its planes are as even as the levels' own
+// sampled cuts; each group's band is set from the sample's counts scaled to the boxes, and a
+// group whose real counts leave it is cut again by the levels. Only speed depends on the planes.
 
 #include <algorithm>
 #include <array>
@@ -22,7 +20,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <type_traits>
 #include <vector>
 
 #include "core/held_box.hpp"
@@ -53,12 +50,11 @@ public:
         }
     }
 
-    /// The shape the cuts should take where one of the two levels above the columns is a layer
-    /// only a few boxes thick (boxes on a floor): its planes, kept at least a box apart
-    /// (CutTree::cut_group), leave it fewer open segments than it has, and every column holds
-    /// as many times the target population. That level keeps the segments it can open and the
-    /// other gets the rest, so that the columns number as many as before. `cuts`' own shape
-    /// where both levels open most of their segments, or neither does.
+    /// The shape the cuts should take where one of the two levels above the columns is a layer a
+    /// few boxes thick: its planes, kept a box apart (CutTree::cut_group()), open fewer segments
+    /// than it has, and every column holds as many times the target population. That level keeps
+    /// the segments it can open and the other gets the rest, so that the columns number as many
+    /// as before. `cuts`' own shape where both levels open most of their segments, or neither.
     [[nodiscard]] static std::array<std::uint32_t, Dim> reshaped(const CutTree<Real, Dim>& cuts) {
         std::array<std::uint32_t, Dim> shape{};
         for (int level = 0; level < Dim; ++level) shape[level] = cuts.segments(level);
@@ -76,8 +72,7 @@ public:
     }
 
 private:
-    using Interval = std::array<Real, 2>;      // min and max on one axis
-    static constexpr std::uint32_t kNone = 1;  // first segment 1, last 0: registered nowhere
+    using Interval = std::array<Real, 2>;  // min and max on one axis
 
     static constexpr int axis_of_level(int level) noexcept { return CutTree<Real, Dim>::axis_of_level(level); }
 
@@ -103,8 +98,8 @@ private:
             next_.resize(counts_.back());
             std::uint32_t* cursor = counts_.data();
             for_each_sampled(input, origin, size, [&](std::size_t i, const Box<Real, Dim>& box) {
-                const std::uint32_t lo = ranges_[i] & 0xFFFFU;
-                const std::uint32_t hi = ranges_[i] >> 16;
+                const std::uint32_t lo = SegmentRange::lo_of(ranges_[i]);
+                const std::uint32_t hi = SegmentRange::hi_of(ranges_[i]);
                 if (lo > hi) return;
                 const Interval interval{box.min[axis_of_level(1)], box.max[axis_of_level(1)]};
                 next_[cursor[lo]++] = interval;
@@ -166,7 +161,7 @@ private:
                 const std::uint32_t hi = segment_of_max(planes, group[i][1], lo);
                 // A box spanning more than two segments leaves the levels (oversized).
                 const bool oversized = hi - lo > 1;
-                ranges[i] = oversized ? kNone : lo | (hi << 16);
+                ranges[i] = oversized ? SegmentRange::kNone : lo | (hi << 16);
                 count[lo] += oversized ? 0U : 1U;
                 count[hi] += !oversized && hi != lo ? 1U : 0U;
             }
@@ -184,7 +179,7 @@ private:
     std::vector<Interval> intervals_;    // the sampled boxes' intervals in each group, group by group
     std::vector<Interval> next_;         // the next level's, while they are regrouped
     std::vector<std::uint32_t> begin_;   // group g's intervals are [begin_[g], begin_[g + 1])
-    std::vector<std::uint32_t> ranges_;  // per interval: first | last segment << 16 (kNone: oversized)
+    std::vector<std::uint32_t> ranges_;  // per interval: a SegmentRange (kNone: oversized)
     std::vector<std::uint32_t> counts_;  // registrations per segment of the level, shifted by one
     QuantileSelector<Real> selector_;
 };

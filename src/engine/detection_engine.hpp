@@ -1,15 +1,12 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The one detection behind every front door: an array of boxes in, its overlapping pairs out.
-// A Detector runs it over the caller's array, a World over its store, a periodic detection
-// over the boxes and their images, a filtered detection over each class of boxes it gathers.
-// It does, once for all of them: check the boxes and find their bounds, choose what to hold
-// (floats where they resolve the scene, held_cut_pipeline.hpp), and detect with the persistent
-// cuts or, given a skin, with the skin list (skin/skin_list.hpp), which steps aside to the cuts
-// for a while when it says it does not pay.
-//
-// The skin is used only where the boxes are held as floats (the skin list holds floats): a
-// scene that floats do not resolve is detected by the cuts on doubles, skin or not.
+// The one detection behind every front door (a Detector's array, a World's store, a periodic
+// detection's boxes and images, a filtered detection's classes): an array of boxes in, its
+// overlapping pairs out. Once for all of them it checks the boxes and finds their bounds, chooses
+// what to hold (floats where they resolve the scene, held_cut_pipeline.hpp), and detects with the
+// persistent cuts or, given a skin, with the skin list (skin/skin_list.hpp), which steps aside to
+// the cuts for a while when it does not pay. The skin list holds floats: a scene that floats do
+// not resolve is detected by the cuts on doubles, skin or not.
 
 #include <concepts>
 #include <cstddef>
@@ -55,8 +52,7 @@ public:
     /// Reports every overlapping pair of `input` once, each as report(key_a, key_b) or in runs
     /// through report.append(). Throws InvalidBoxError (naming the index) before any change
     /// when a box of unchecked input is invalid. `skin` > 0 lets the skin list detect.
-    /// Defined in engine/detection_engine_detect.hpp and compiled once per box type and report
-    /// (engine/engine_reports.hpp), so that the front doors do not each compile the pipeline.
+    /// Defined and compiled in engine/detection_engine.cpp, once per box type and report.
     template <class Report>
     void detect(const EngineInput<Real, Dim>& input, const DetectionSettings& settings, double skin, Report& report,
                 DetectStats& stats, DetectProfile& profile);
@@ -68,9 +64,9 @@ public:
     [[nodiscard]] bool skin_detected() const noexcept { return skin_detected_; }
     [[nodiscard]] const SkinList<Real, Dim>& skin_list() const noexcept { return skin_; }
 
-    /// Slots the next detection finds where it left them: a World compacts its store keeping
-    /// these in place (BoxStore::compact()). The skin list finds any box at any slot, and keeps
-    /// its candidates best when the holes are filled from the end.
+    /// Slots the next detection finds where it left them, which a World's compaction keeps in
+    /// place (BoxStore::compact()). The skin list finds any box at any slot, and keeps its
+    /// candidates best when the holes are filled from the end.
     [[nodiscard]] std::size_t listed(std::size_t slot_count) const noexcept {
         return skin_detected_ ? slot_count : cuts_.listed();
     }
@@ -101,7 +97,7 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept { return cuts_.bytes_held() + skin_.bytes_held(); }
 
 private:
-    /// With a skin, on floats: whether the skin list detected (see detection_engine_detect.hpp).
+    /// With a skin, on floats: whether the skin list detected (detection_engine.cpp).
     template <class Report>
     bool detected_with_skin(const EngineInput<Real, Dim>& input, const SceneBounds<Real, Dim>& bounds,
                             const DetectionSettings& settings, double skin, Report& report, DetectStats& stats,
