@@ -251,8 +251,14 @@ public:
     }
     void settle_candidate(Candidate& candidate, bool overlap, btDispatcher* dispatcher);
     /// Removes the candidate's pair from the cache if it holds it. A callback of the cache may
-    /// have destroyed a proxy on the way, its pairs with it.
-    void drop_if_held(const Candidate& candidate, btDispatcher* dispatcher);
+    /// have destroyed a proxy on the way, its pairs with it. Inline: the passes over the
+    /// candidates meet it for every candidate they drop, and a call out of the unit slows them.
+    void drop_if_held(const Candidate& candidate, btDispatcher* dispatcher) {
+        if (candidate.held != Held::held) return;
+        Proxy* a = live(candidate.a);
+        Proxy* b = live(candidate.b);
+        if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
+    }
     /// After a detection: sorts pair_keys_ and makes the candidates exactly those pairs, in
     /// order: those whose fat boxes stopped overlapping leave (and the cache, if it held them),
     /// those that began join, those that stay keep what the cache holds; every candidate is

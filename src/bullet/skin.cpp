@@ -75,13 +75,6 @@ void Broadphase::Impl::drop_pair(Proxy& a, Proxy& b, btDispatcher* dispatcher) {
     cache_->removeOverlappingPair(&a, &b, dispatcher);
 }
 
-void Broadphase::Impl::drop_if_held(const Candidate& candidate, btDispatcher* dispatcher) {
-    if (candidate.held != Held::held) return;
-    Proxy* a = live(candidate.a);
-    Proxy* b = live(candidate.b);
-    if (a != nullptr && b != nullptr) drop_pair(*a, *b, dispatcher);
-}
-
 void Broadphase::Impl::test_candidates(btDispatcher* dispatcher) {
     for (Candidate& candidate : candidates_) test_candidate(candidate, dispatcher);
 }
