@@ -31,37 +31,6 @@
 
 namespace smb::detail {
 
-/// The boxes open in a sweep (this one's, and the oversized sweep's), swap-removed on closing.
-class OpenSet {
-public:
-    void reset(std::size_t boxes) {
-        position_.assign(boxes, kNone);
-        members_.clear();
-    }
-    void add(std::uint32_t box) {
-        position_[box] = static_cast<std::uint32_t>(members_.size());
-        members_.push_back(box);
-    }
-    void remove(std::uint32_t box) {
-        const std::uint32_t at = position_[box];
-        if (at == kNone) return;
-        const std::uint32_t last = members_.back();
-        members_[at] = last;
-        position_[last] = at;
-        members_.pop_back();
-        position_[box] = kNone;
-    }
-    [[nodiscard]] const std::vector<std::uint32_t>& members() const noexcept { return members_; }
-    [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return (position_.capacity() + members_.capacity()) * sizeof(std::uint32_t);
-    }
-
-private:
-    static constexpr std::uint32_t kNone = ~std::uint32_t{0};
-    std::vector<std::uint32_t> position_;
-    std::vector<std::uint32_t> members_;
-};
-
 template <std::floating_point Real, int Dim>
 class CellChecker {
 public:
@@ -95,7 +64,8 @@ public:
     [[nodiscard]] std::span<const std::uint8_t> flag_matrix() const noexcept { return flags_; }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
-        return flags_.capacity() + open_.capacity() + present_min_.capacity() + active_.bytes_held();
+        return flags_.capacity() + open_.capacity() + present_min_.capacity() +
+               (active_.capacity() + position_.capacity()) * sizeof(std::uint32_t);
     }
 
 private:
@@ -113,10 +83,12 @@ private:
             if (oversized[slot]) continue;
             const std::uint32_t local = map.local(slot);
             if (local == present_min_.size()) present_min_.push_back(0);
+            std::uint8_t min_ends = 0;
             for (int level = 0; level < Dim; ++level) {
                 if (end_on_level(entry.item, level) == 0)
-                    present_min_[local] = static_cast<std::uint8_t>(present_min_[local] | (1U << level));
+                    min_ends = static_cast<std::uint8_t>(min_ends | (1U << level));
             }
+            present_min_[local] = static_cast<std::uint8_t>(present_min_[local] | min_ends);
         }
     }
 
@@ -126,10 +98,12 @@ private:
     void sweep(std::size_t count, CornerAt corner_at, int level, const GlobalLocalMap& map, Overlap&& overlap) {
         const std::size_t m = map.size();
         open_.assign(m, kNotYet);
-        active_.reset(m);
+        position_.resize(m);
+        active_.clear();
         auto open = [&](std::uint32_t box) {
-            for (const std::uint32_t other : active_.members()) overlap(other, box);
-            active_.add(box);
+            for (const std::uint32_t other : active_) overlap(other, box);
+            position_[box] = static_cast<std::uint32_t>(active_.size());
+            active_.push_back(box);
             open_[box] = kOpen;
         };
         for (std::uint32_t box = 0; box < m; ++box) {
@@ -142,7 +116,10 @@ private:
             if (end_on_level(corner, level) == 0) {
                 if (open_[box] == kNotYet) open(box);
             } else if (open_[box] == kOpen) {
-                active_.remove(box);
+                const std::uint32_t last = active_.back();
+                active_[position_[box]] = last;
+                position_[last] = position_[box];
+                active_.pop_back();
                 open_[box] = kClosed;
             }
         }
@@ -193,7 +170,8 @@ private:
     std::vector<std::uint8_t> flags_;        // the cell's m x m flag matrix (upper triangle used)
     std::vector<std::uint8_t> present_min_;  // per local box: bit l = its min end on level l is in the cell
     std::vector<std::uint8_t> open_;
-    OpenSet active_;
+    std::vector<std::uint32_t> active_;
+    std::vector<std::uint32_t> position_;
 };
 
 }  // namespace smb::detail

@@ -15,10 +15,39 @@
 #include <vector>
 
 #include "paper/axis_entry.hpp"
-#include "paper/cell_check.hpp"
 #include "smb/box.hpp"
 
 namespace smb::detail {
+
+class OpenSet {
+public:
+    void reset(std::size_t boxes) {
+        position_.assign(boxes, kNone);
+        members_.clear();
+    }
+    void add(std::uint32_t box) {
+        position_[box] = static_cast<std::uint32_t>(members_.size());
+        members_.push_back(box);
+    }
+    void remove(std::uint32_t box) {
+        const std::uint32_t at = position_[box];
+        if (at == kNone) return;
+        const std::uint32_t last = members_.back();
+        members_[at] = last;
+        position_[last] = at;
+        members_.pop_back();
+        position_[box] = kNone;
+    }
+    [[nodiscard]] const std::vector<std::uint32_t>& members() const noexcept { return members_; }
+    [[nodiscard]] std::size_t bytes_held() const noexcept {
+        return (position_.capacity() + members_.capacity()) * sizeof(std::uint32_t);
+    }
+
+private:
+    static constexpr std::uint32_t kNone = ~std::uint32_t{0};
+    std::vector<std::uint32_t> position_;
+    std::vector<std::uint32_t> members_;
+};
 
 template <std::floating_point Real, int Dim>
 class OversizedSweep {

@@ -186,8 +186,16 @@ private:
             cuts_ = static_cast<SegmentId>(std::lround(ideal));
         }
     }
+    // The span, axis and shift held in locals: the loop's stores to the keys would otherwise have
+    // it read the members again for every entry.
     void refresh_keys(Level& level, int depth) {
-        for (Entry& entry : level.list) entry.key = key_of(entry.item, depth);
+        const auto boxes = boxes_;
+        const int axis = axis_of_level(depth);
+        const int shift = depth + 1;
+        for (Entry& entry : level.list) {
+            const auto& box = boxes[entry.item >> shift];
+            entry.key = end_of(entry.item) == 0 ? box.min[axis] : box.max[axis];
+        }
     }
     /// The items of the boxes inserted since the last detection, for level `depth`.
     void collect_arrivals(int depth) {
