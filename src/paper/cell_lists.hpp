@@ -35,4 +35,30 @@ void regroup_by_cell(const ItemRange& upper_items, int corners_shift, std::span<
     }
 }
 
+/// A view of a list's item ids, for regroup_by_cell (std::views::transform would do, but clang 14
+/// cannot compile libstdc++ 12's, and the fuzzers are built with clang).
+template <std::floating_point Real>
+class ItemsOf {
+public:
+    explicit ItemsOf(std::span<const AxisEntry<Real>> list) : list_(list) {}
+    class iterator {
+    public:
+        explicit iterator(const AxisEntry<Real>* at) : at_(at) {}
+        Item operator*() const noexcept { return at_->item; }
+        iterator& operator++() noexcept {
+            ++at_;
+            return *this;
+        }
+        bool operator!=(const iterator& other) const noexcept { return at_ != other.at_; }
+
+    private:
+        const AxisEntry<Real>* at_;
+    };
+    [[nodiscard]] iterator begin() const noexcept { return iterator(list_.data()); }
+    [[nodiscard]] iterator end() const noexcept { return iterator(list_.data() + list_.size()); }
+
+private:
+    std::span<const AxisEntry<Real>> list_;
+};
+
 }  // namespace smb::detail

@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <ranges>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -245,8 +244,7 @@ private:
         const Level& deepest = levels_[Dim - 1];
         for (int depth = 0; depth + 1 < Dim; ++depth) {
             fit_capacity(cell_lists_[static_cast<std::size_t>(depth)], deepest.list.size());
-            regroup_by_cell(std::views::transform(levels_[depth].list, [](const Entry& entry) { return entry.item; }),
-                            Dim - 1 - depth, segment_of_, deepest.segment_begin,
+            regroup_by_cell(ItemsOf<Real>(levels_[depth].list), Dim - 1 - depth, segment_of_, deepest.segment_begin,
                             cell_lists_[static_cast<std::size_t>(depth)], cell_cursor_);
         }
     }
