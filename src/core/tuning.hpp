@@ -26,6 +26,11 @@ static_assert(DetectionSettings{}.target_cell_population == cell_population);
 /// Cells of up to this many registered boxes test every pair, past it they are swept: every pair
 /// is faster at the usual ~46 boxes and still at ~130 (target population 64), but costs m^2 / 16.
 inline constexpr std::size_t all_pairs_limit = 128;
+/// A column whose rows reach this many boxes along x or more (CellXOrder::reach(), a bound from
+/// its widest box) is swept two groups of lanes a turn, else one. The paper's 3D columns reach
+/// about 13: two a turn took its check about 5% less time; 2D columns reach about 5, and there
+/// two a turn took 12% more, sparse 3D columns 7% more (smb_compare --method smb, 300k boxes).
+inline constexpr double long_sweep_rows = 10.0;
 /// Pairs one column may hold while the threads check a round (4 MiB a thread): a column that
 /// makes more is checked again on the calling thread straight into the report, so that the
 /// buffers stay bounded whatever the output.

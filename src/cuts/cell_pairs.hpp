@@ -97,7 +97,8 @@ public:
         lay_out_sorted(x_order_.keys(), m, entries, boxes, floor);
         if constexpr (kExactLanes) {
             if (m <= kMostPaired) {
-                rows_.swept_rows(m, kSweptHitRoom, [&](const std::uint32_t* hits, std::size_t count) {
+                long_rows_ = x_order_.reach() >= tuning::long_sweep_rows;
+                rows_.swept_rows(m, kSweptHitRoom, long_rows_, [&](const std::uint32_t* hits, std::size_t count) {
                     report_hits(hits, count, boxes, report);
                 });
                 append_home(m, home);
@@ -155,6 +156,8 @@ public:
         return {rows_.columns.position, x_order_.size()};
     }
     [[nodiscard]] Real widest_x() const noexcept { return x_order_.widest_x(); }
+    /// Whether the last sweep of float boxes read two groups of lanes a turn (tuning::long_sweep_rows).
+    [[nodiscard]] bool swept_long_rows() const noexcept { return long_rows_; }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return x_order_.bytes_held() + scratch_.bytes_held() + own_home_.capacity() * sizeof(std::uint32_t);
@@ -166,7 +169,7 @@ private:
     // so the float test passes every pair that overlaps, and each pair it passes is tested
     // again exactly. Four double lanes fill two SSE registers and are slower than one candidate
     // at a time (and the layout takes twice the bytes); four float lanes fill one.
-    static constexpr std::size_t kPadding = 8;  // the most lanes
+    static constexpr std::size_t kPadding = 16;  // the most lanes a turn of a row reads past its last box
 
     static constexpr bool kExactLanes = std::is_same_v<Real, float>;
     using Mask = typename CellScratch<Dim>::Mask;
@@ -291,6 +294,7 @@ private:
     std::size_t laid_out_ = 0;             // boxes of the cell laid out last
     std::size_t hit_room_ = 0;             // and the room for hits after them
     bool laid_out_swept_ = false;          // and whether it was laid out in x order
+    bool long_rows_ = false;               // see swept_long_rows()
 };
 
 }  // namespace smb::detail

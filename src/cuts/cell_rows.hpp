@@ -57,15 +57,23 @@ struct CellRows {
     /// cell holds at most 2^15 boxes), and flush(hits, count) takes them, in row order, whenever
     /// fewer than `room` - Lanes places are left and at the end. A branch on each hit guessed
     /// wrong for most rows.
+    /// `long_rows`: rows reach past one group of lanes on most rows (CellXOrder::reach()), and
+    /// the sweep reads two groups a turn.
     template <class Flush>
-    void swept_rows(std::size_t m, std::size_t room, Flush&& flush) {
+    void swept_rows(std::size_t m, std::size_t room, bool long_rows, Flush&& flush) {
 #if SMB_LANES_AVX2
         if (cpu_has_avx2()) {
-            swept_rows_avx2(m, room, flush);
+            if (long_rows)
+                swept_rows_avx2<2>(m, room, flush);
+            else
+                swept_rows_avx2<1>(m, room, flush);
             return;
         }
 #endif
-        swept_rows_in_lanes<4>(m, room, flush);
+        if (long_rows)
+            swept_rows_in_lanes<4, 2>(m, room, flush);
+        else
+            swept_rows_in_lanes<4, 1>(m, room, flush);
     }
 
     /// A box from outside the cell (an oversized box that covers it: its `own` inside bits, its
@@ -179,7 +187,7 @@ private:
         return static_cast<std::size_t>(out - first);
     }
 
-    template <std::size_t Lanes, class Flush>
+    template <std::size_t Lanes, std::size_t Groups, class Flush>
     [[gnu::always_inline]] inline void swept_rows_in_lanes(std::size_t m, std::size_t room, Flush& flush) {
         using MaskLanes = typename FloatLanes<Lanes>::Masks;
         MaskLanes lane{};
@@ -187,20 +195,27 @@ private:
         const std::uint32_t* key = columns.key;
         const Mask* inside = columns.inside;
         std::uint32_t* const first = columns.hits;
-        std::uint32_t* const full = first + (room - Lanes);
+        std::uint32_t* const full = first + (room - Groups * Lanes);
         std::uint32_t* out = first;
         for (std::size_t i = 0; i < m; ++i) {
             const std::uint32_t stop = monotone_key(columns.max[0][i]);
             std::array<float, Dim> low{}, high{};  // low[0] unused, see sweep()
             row_corners(i, low, high);
             MaskLanes pair = lane + static_cast<Mask>((i << 16) | (i + 1));
-            for (std::size_t j = i + 1; key[j] <= stop; j += Lanes) {
+            // Groups of lanes a turn: where rows reach about ten boxes along x, two a turn end
+            // most rows after one, where one a turn ended them after one, two or three and was
+            // guessed wrong about once a row. The lanes test x too, so the candidates of a turn
+            // past `stop` report nothing.
+            for (std::size_t j = i + 1; key[j] <= stop; j += Groups * Lanes) {
                 if (out > full) {
                     flush(static_cast<const std::uint32_t*>(first), static_cast<std::size_t>(out - first));
                     out = first;
                 }
-                out = append_set_lanes<Lanes>(out, lanes_hit<Lanes, true>(j, inside[i], low, high), pair);
-                pair += static_cast<Mask>(Lanes);
+                for (std::size_t group = 0; group < Groups; ++group) {
+                    out = append_set_lanes<Lanes>(out, lanes_hit<Lanes, true>(j + group * Lanes, inside[i], low, high),
+                                                  pair);
+                    pair += static_cast<Mask>(Lanes);
+                }
             }
         }
         flush(static_cast<const std::uint32_t*>(first), static_cast<std::size_t>(out - first));
@@ -237,9 +252,9 @@ private:
                                                          Flush& flush) const {
         visitor_row_in_lanes<8>(from, m, sorted, own, low, high, room, flush);
     }
-    template <class Flush>
+    template <std::size_t Groups, class Flush>
     [[gnu::target("avx2,popcnt")]] void swept_rows_avx2(std::size_t m, std::size_t room, Flush& flush) {
-        swept_rows_in_lanes<8>(m, room, flush);
+        swept_rows_in_lanes<8, Groups>(m, room, flush);
     }
     template <class Real, class Report>
     [[gnu::target("avx2")]] void sweep_avx2(std::size_t m, std::span<const Box<Real, Dim>> boxes,

@@ -184,6 +184,52 @@ TYPED_TEST(CellPairsTest, AllPairsAndSweepReportTheSamePairsOnce) {
     }
 }
 
+/// A column of m boxes spread over `x_span` along x, each at most one wide on x and crowded on
+/// the other axes: its rows reach about m / x_span boxes along x.
+template <class Real, int Dim>
+Cell<Real, Dim> spread_cell(std::mt19937_64& random, std::size_t m, double x_span) {
+    Cell<Real, Dim> cell;
+    std::uniform_real_distribution<double> along(0.0, x_span);
+    std::uniform_int_distribution<int> lattice(0, 8);
+    for (std::size_t i = 0; i < m; ++i) {
+        Box<Real, Dim> box;
+        box.min[0] = static_cast<Real>(along(random));
+        box.max[0] = box.min[0] + static_cast<Real>(lattice(random)) / Real{8};
+        for (int k = 1; k < Dim; ++k) {
+            box.min[k] = static_cast<Real>(lattice(random)) * Real{0.25};
+            box.max[k] = box.min[k] + static_cast<Real>(lattice(random) % 5) * Real{0.25};
+        }
+        cell.boxes.push_back(box);
+        cell.ids.push_back(static_cast<BoxId>(i));
+        cell.entries.push_back(static_cast<std::uint32_t>(i));
+    }
+    std::shuffle(cell.entries.begin(), cell.entries.end(), random);
+    cell.floor[0] = -std::numeric_limits<Real>::infinity();
+    for (int k = 1; k < Dim; ++k)
+        cell.floor[k] = random() % 2 == 0 ? -std::numeric_limits<Real>::infinity() : Real{0.5};
+    return cell;
+}
+
+TEST(CellPairs, SweepReportsEveryPairWhetherRowsAreShortOrLong) {
+    std::mt19937_64 random(99);
+    CellPairs<float, 3> cell_pairs;
+    // Rows that reach about 1, 5, 20 and 300 boxes: one group of lanes a turn, then two.
+    for (const double x_span : {1000.0, 200.0, 50.0, 4.0}) {
+        for (int trial = 0; trial < 4; ++trial) {
+            SCOPED_TRACE(::testing::Message() << "x span " << x_span << ", trial " << trial);
+            const Cell<float, 3> cell = spread_cell<float, 3>(random, 1000, x_span);
+            const auto swept = run_check<float, 3>([&](auto& report, auto& out) {
+                cell_pairs.check_by_sweep(std::span<const std::uint32_t>(cell.entries),
+                                          std::span<const Box<float, 3>>(cell.boxes), std::span<const BoxId>(cell.ids),
+                                          cell.floor, report, out);
+            });
+            EXPECT_EQ(swept.pairs, expected_pairs(cell));
+            EXPECT_EQ(swept.reports, swept.pairs.size()) << "a pair reported twice";
+            EXPECT_EQ(cell_pairs.swept_long_rows(), x_span < 100.0) << "the turn the rows' reach asks for";
+        }
+    }
+}
+
 TEST(CellPairs, DoubleGapsBelowFloatPrecisionAreTestedExactly) {
     // Floats round these boxes onto one another; only the exact test on the doubles tells the
     // touching pair (reported) from the ones a hair apart (not).
