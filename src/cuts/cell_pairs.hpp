@@ -95,9 +95,9 @@ public:
         laid_out_swept_ = true;
         x_order_.order_equal_keys(entries, boxes, ids);
         lay_out_sorted(x_order_.keys(), m, entries, boxes, floor);
+        long_rows_ = kExactLanes && m <= kMostPaired && x_order_.reach() >= tuning::long_sweep_rows;
         if constexpr (kExactLanes) {
             if (m <= kMostPaired) {
-                long_rows_ = x_order_.reach() >= tuning::long_sweep_rows;
                 rows_.swept_rows(m, kSweptHitRoom, long_rows_, [&](const std::uint32_t* hits, std::size_t count) {
                     report_hits(hits, count, boxes, report);
                 });

@@ -55,10 +55,9 @@ struct CellRows {
     /// The sweep of sweep() for float boxes, whose lanes' test is exact: the hits of each group
     /// of lanes are written down without a branch (i << 16 | j, as pair_rows() writes them; the
     /// cell holds at most 2^15 boxes), and flush(hits, count) takes them, in row order, whenever
-    /// fewer than `room` - Lanes places are left and at the end. A branch on each hit guessed
-    /// wrong for most rows.
-    /// `long_rows`: rows reach past one group of lanes on most rows (CellXOrder::reach()), and
-    /// the sweep reads two groups a turn.
+    /// fewer places are left than one turn may write, and at the end. A branch on each hit
+    /// guessed wrong for most rows. `long_rows`: most rows reach past one group of lanes
+    /// (CellXOrder::reach()), and the sweep reads two groups a turn.
     template <class Flush>
     void swept_rows(std::size_t m, std::size_t room, bool long_rows, Flush&& flush) {
 #if SMB_LANES_AVX2

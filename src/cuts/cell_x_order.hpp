@@ -71,6 +71,8 @@ public:
     std::size_t sort(std::span<const std::uint32_t> entries, std::span<const Box<Real, Dim>> boxes) {
         const std::size_t m = entries.size();
         order_.resize(m);
+        shared_keys_ = false;
+        reach_ = 0;
         if (m == 0) return 0;
         spread_.resize(m);
         bucket_.resize(m);
@@ -131,11 +133,6 @@ public:
 
 private:
     using ExtentBits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
-
-    /// The float whose monotone_key() is `key`.
-    static float float_of_key(std::uint32_t key) noexcept {
-        return std::bit_cast<float>((key & 0x80000000U) != 0 ? key & 0x7FFFFFFFU : ~key);
-    }
 
     // DIS with the single increment 1 on a list whose boxes lie close to their places. Past
     // `bound` moves the rest is sorted outright. The keys carry the local numbers, so a move

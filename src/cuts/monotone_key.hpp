@@ -37,4 +37,10 @@ template <std::floating_point Real>
     return key;
 }
 
+/// The float whose monotone_key() is `key`: for float input the value itself, for double input
+/// the float at or below it.
+[[nodiscard]] inline float float_of_key(std::uint32_t key) noexcept {
+    return std::bit_cast<float>((key & 0x80000000U) != 0 ? key & 0x7FFFFFFFU : ~key);
+}
+
 }  // namespace smb::detail

@@ -2,7 +2,7 @@
 // The cell check (src/cuts/cell_pairs.hpp) both ways: testing every pair and sweeping on x
 // report the same pairs and the same home boxes as a direct test under the lower-corner rule, at
 // every size around the limit between them, in float and double, with the boxes registered in
-// any order.
+// any order; and the keys of its sort on x.
 
 #include <gtest/gtest.h>
 
@@ -227,6 +227,38 @@ TEST(CellPairs, SweepReportsEveryPairWhetherRowsAreShortOrLong) {
             EXPECT_EQ(swept.reports, swept.pairs.size()) << "a pair reported twice";
             EXPECT_EQ(cell_pairs.swept_long_rows(), x_span < 100.0) << "the turn the rows' reach asks for";
         }
+    }
+}
+
+// The sort on x takes its bucket range from the lowest and highest keys (CellXOrder::sort), so
+// the float of a key must be the float it came from, or below a double it came from.
+TEST(MonotoneKey, FloatOfKeyUndoesTheKeyAndStaysAtOrBelowADouble) {
+    const float floats[] = {0.0F,
+                            -0.0F,
+                            1.0F,
+                            -1.0F,
+                            1e-40F,
+                            -1e-40F,
+                            3.0e38F,
+                            -3.0e38F,
+                            std::numeric_limits<float>::max(),
+                            -std::numeric_limits<float>::max(),
+                            std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity()};
+    for (const float x : floats) {
+        EXPECT_EQ(float_of_key(monotone_key(x)), x + 0.0F) << x;  // -0 keys as +0
+        EXPECT_FALSE(std::signbit(float_of_key(monotone_key(x))) && x == 0.0F) << "-0 keys as +0";
+    }
+    std::mt19937_64 random(5);
+    std::uniform_real_distribution<double> any(-1e6, 1e6);
+    for (int i = 0; i < 10000; ++i) {
+        const double x = i % 100 == 0 ? -1e300 : any(random);
+        const float below = float_of_key(monotone_key(x));
+        EXPECT_LE(static_cast<double>(below), x) << x;
+        if (x >= -static_cast<double>(std::numeric_limits<float>::max())) {
+            EXPECT_GT(static_cast<double>(std::nextafter(below, std::numeric_limits<float>::infinity())), x) << x;
+        }
+        EXPECT_LE(below, to_float(x)) << "at or below the rounded coordinate the buckets take";
     }
 }
 
