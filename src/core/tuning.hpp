@@ -52,6 +52,15 @@ inline constexpr std::size_t quantile_radix_from = 128;
 /// the rest (src/cuts/sampled_cuts.hpp). Three quarters: a level that loses a segment or two to
 /// a crowd of large boxes keeps its shape.
 inline constexpr double thin_level_open_share = 0.75;
+/// Such a layer that opens at most this many segments is left whole, and the other level takes
+/// every column. Its segments would be about a box thick, so that most boxes registered in two,
+/// while the other level, its planes a box apart too, cannot open the segments it is given. On
+/// boxes of sides 0.4 to 1 whose centres keep to a slab (`smb_compare --scene plane`, 300k, 3D,
+/// Detector, the slab made thicker for the test): 2 thick (3 open), whole 1.51 registrations a box
+/// against 1.81 and 15.5 against 18.6 ms a step; 6 thick (6 open), 1.60 against 2.09 and 17.9
+/// against 21.7 ms; 10 thick (10 open), whole was slower (23.4-24.1 against 20.2-21.5 ms): its
+/// columns' cross-sections hold too many candidates.
+inline constexpr double whole_layer_open = 6.0;
 /// The boxes are copied grouped by column (src/cuts/column_presort.hpp) once the first level's
 /// hint misses on more than this share of its entries. At 1M boxes in 3D (`smb run --pipeline
 /// detector`) it missed on 2% at Λ = 0.01, 7% at 0.02, 14% at 0.03, 62% at 0.1; a step copied by

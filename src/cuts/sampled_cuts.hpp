@@ -54,7 +54,9 @@ public:
     /// few boxes thick: its planes, kept a box apart (CutTree::cut_group()), open fewer segments
     /// than it has, and every column holds as many times the target population. That level keeps
     /// the segments it can open and the other gets the rest, so that the columns number as many
-    /// as before. `cuts`' own shape where both levels open most of their segments, or neither.
+    /// as before; a layer that opens only a few is left whole (tuning::whole_layer_open): its
+    /// segments would be about a box thick, so that most boxes registered in two of them.
+    /// `cuts`' own shape where both levels open most of their segments, or neither.
     [[nodiscard]] static std::array<std::uint32_t, Dim> reshaped(const CutTree<Real, Dim>& cuts) {
         std::array<std::uint32_t, Dim> shape{};
         for (int level = 0; level < Dim; ++level) shape[level] = cuts.segments(level);
@@ -63,7 +65,9 @@ public:
         const bool thin_second = open[1] < tuning::thin_level_open_share * shape[1];
         if (thin_first == thin_second) return shape;
         const int layer = thin_first ? 0 : 1;
-        const auto kept = static_cast<std::uint32_t>(std::max(1.0, std::round(open[layer])));
+        const auto kept = open[layer] <= tuning::whole_layer_open
+                              ? 1U
+                              : static_cast<std::uint32_t>(std::max(1.0, std::round(open[layer])));
         const double columns = static_cast<double>(shape[0]) * static_cast<double>(shape[1]);
         shape[1 - layer] = static_cast<std::uint32_t>(
             std::min(std::round(columns / kept), static_cast<double>(CutTree<Real, Dim>::kMaxSegments)));
