@@ -214,6 +214,53 @@ TYPED_TEST(WorldLifeCycleTest, HugeBoxOverMoreBoxesThanABufferHoldsOnSeveralThre
     }
 }
 
+TYPED_TEST(WorldLifeCycleTest, OversizedBoxesOverlappingOneAnotherBeyondABufferOnSeveralThreads) {
+    // 760 boxes over the whole scene, each overlapping every other: their 288 420 pairs among
+    // themselves outgrow what the threads buffer for the oversized boxes' sweep, which is then
+    // run again into the sink; each also overlaps every one of the small boxes, which lie apart.
+    using R = typename TestFixture::Real;
+    constexpr int D = TestFixture::Dim;
+    const std::size_t small = 4000;  // most boxes, so that the planes are kept a small box apart
+    const std::size_t big = 760;
+    const std::size_t side = D == 2 ? 64 : 16;  // side^Dim >= small grid places
+    std::vector<typename TestFixture::BoxT> boxes;
+    for (std::size_t i = 0; i < small; ++i) {
+        typename TestFixture::BoxT box;
+        std::size_t rest = i;
+        for (int k = 0; k < D; ++k) {
+            box.min[k] = static_cast<R>(2 * (rest % side));
+            box.max[k] = box.min[k] + R{1};
+            rest /= side;
+        }
+        boxes.push_back(box);
+    }
+    for (std::size_t i = 0; i < big; ++i) {
+        typename TestFixture::BoxT box;
+        for (int k = 0; k < D; ++k) {
+            box.min[k] = static_cast<R>(-1.0 - static_cast<double>(i % 37) / 8);
+            box.max[k] = static_cast<R>(2.0 * static_cast<double>(side) + static_cast<double>(i % 11) / 4);
+        }
+        boxes.push_back(box);
+    }
+    WorldSettings settings = test_settings();
+    settings.threads = 2;
+    settings.profile = true;
+    World<R, D> world(settings);
+    World<R, D> alone(test_settings());
+    world.assign(boxes);
+    alone.assign(boxes);
+    std::vector<Pair> threaded, single;
+    world.detect(threaded);
+    alone.detect(single);
+    if (test_pipeline() == Pipeline::persistent_cuts) {
+        EXPECT_EQ(world.last_profile().oversized_boxes, big);
+    }
+    EXPECT_EQ(threaded.size(), big * (big - 1) / 2 + big * small);
+    EXPECT_EQ(threaded, single) << "the thread count changed the pairs or their order";
+    this->assign(boxes);
+    this->check("every big box over every box");
+}
+
 TYPED_TEST(WorldLifeCycleTest, PairSinkReceivesEveryPairInBoundedChunks) {
     WorldSettings settings = test_settings();
     settings.pair_chunk_size = 7;
