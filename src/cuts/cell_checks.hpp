@@ -67,7 +67,7 @@ public:
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         std::size_t bytes =
             cell_pairs_.bytes_held([](const CellPairs<Real, Dim>& pairs) { return pairs.bytes_held(); });
-        bytes += blocks_.capacity() * sizeof(BlockOutput);
+        bytes += blocks_.capacity() * sizeof(BlockOutput) + swept_oversized_.capacity() * sizeof(Position);
         if (visitors_) bytes += sizeof(Visitors) + visitors_->bytes_held();
         for (const BlockOutput& block : blocks_)
             bytes += block.pairs.capacity() * sizeof(Pair) + block.home.capacity() * sizeof(Position);
@@ -100,6 +100,9 @@ private:
 
     PerThread<CellPairs<Real, Dim>> cell_pairs_;
     std::vector<BlockOutput> blocks_;  // one per block of a round of cell checks
+    // What the oversized boxes' sweep lists as at home (all of them; check_cells() writes their
+    // home): kept, so that a detection allocates nothing there.
+    BulkVector<Position> swept_oversized_;
     /// The oversized boxes that cover each cell, in x order: cell c's are
     /// boxes[begin[c], begin[c + 1]); `begin` empty where no box is oversized.
     struct Visitors {
@@ -291,16 +294,17 @@ void CellChecks<Real, Dim>::check_oversized(const Checked& checked, Report& repo
     constexpr Real kNoPlane = -std::numeric_limits<Real>::infinity();
     CellFloor<Real, Dim> everywhere{};
     everywhere.fill(kNoPlane);
-    BulkVector<Position> no_home;
-    in_ordered_rounds(
-        checked, 1, report, no_home, [&](std::size_t, auto& collect, BulkVector<Position>& unused_home, const bool*) {
-            CellPairs<Real, Dim>& cell_pairs = cell_pairs_.mine();
-            return checked.order.own_ids()
-                       ? cell_pairs.check_by_sweep(checked.oversized, checked.boxes, checked.order.ids(), everywhere,
-                                                   collect, unused_home)
-                       : cell_pairs.check_by_sweep(checked.oversized, checked.boxes, checked.order.order(), everywhere,
-                                                   collect, unused_home);
-        });
+    swept_oversized_.clear();
+    in_ordered_rounds(checked, 1, report, swept_oversized_,
+                      [&](std::size_t, auto& collect, BulkVector<Position>& unused_home, const bool*) {
+                          CellPairs<Real, Dim>& cell_pairs = cell_pairs_.mine();
+                          return checked.order.own_ids()
+                                     ? cell_pairs.check_by_sweep(checked.oversized, checked.boxes, checked.order.ids(),
+                                                                 everywhere, collect, unused_home)
+                                     : cell_pairs.check_by_sweep(checked.oversized, checked.boxes,
+                                                                 checked.order.order(), everywhere, collect,
+                                                                 unused_home);
+                      });
 }
 
 }  // namespace smb::detail

@@ -21,6 +21,38 @@
 namespace smb::test {
 namespace {
 
+/// `count` unit boxes on an integer lattice of `side` places per axis, two units apart, so that
+/// no two overlap; the lattice spans [0, 2 side - 1] on every axis.
+template <class R, int D>
+std::vector<Box<R, D>> boxes_apart(std::size_t count, std::size_t side) {
+    std::vector<Box<R, D>> boxes;
+    for (std::size_t i = 0; i < count; ++i) {
+        Box<R, D> box;
+        std::size_t rest = i;
+        for (int k = 0; k < D; ++k) {
+            box.min[k] = static_cast<R>(2 * (rest % side));
+            box.max[k] = box.min[k] + R{1};
+            rest /= side;
+        }
+        boxes.push_back(box);
+    }
+    return boxes;
+}
+
+/// The pairs `world` (set to several threads) reports for `boxes`, checked equal, in order, to
+/// those of a world on one thread.
+template <class R, int D>
+std::vector<Pair> pairs_beside_one_thread(World<R, D>& world, const std::vector<Box<R, D>>& boxes) {
+    World<R, D> alone(test_settings());
+    world.assign(boxes);
+    alone.assign(boxes);
+    std::vector<Pair> threaded, single;
+    world.detect(threaded);
+    alone.detect(single);
+    EXPECT_EQ(threaded, single) << "the thread count changed the pairs or their order";
+    return threaded;
+}
+
 template <typename WorldType>
 class WorldLifeCycleTest : public WorldEdgeCaseTest<WorldType> {};
 
@@ -181,17 +213,7 @@ TYPED_TEST(WorldLifeCycleTest, HugeBoxOverMoreBoxesThanABufferHoldsOnSeveralThre
     constexpr int D = TestFixture::Dim;
     const std::size_t n = 270000;
     const std::size_t side = D == 2 ? 520 : 65;  // side^Dim >= n grid places
-    std::vector<typename TestFixture::BoxT> boxes;
-    for (std::size_t i = 0; i < n; ++i) {
-        typename TestFixture::BoxT box;
-        std::size_t rest = i;
-        for (int k = 0; k < D; ++k) {
-            box.min[k] = static_cast<R>(2 * (rest % side));
-            box.max[k] = box.min[k] + R{1};
-            rest /= side;
-        }
-        boxes.push_back(box);
-    }
+    std::vector<typename TestFixture::BoxT> boxes = boxes_apart<R, D>(n, side);
     typename TestFixture::BoxT huge;
     for (int k = 0; k < D; ++k) {
         huge.min[k] = -1;
@@ -201,14 +223,8 @@ TYPED_TEST(WorldLifeCycleTest, HugeBoxOverMoreBoxesThanABufferHoldsOnSeveralThre
     WorldSettings settings = test_settings();
     settings.threads = 2;
     World<R, D> world(settings);
-    World<R, D> alone(test_settings());
-    world.assign(boxes);
-    alone.assign(boxes);
-    std::vector<Pair> threaded, single;
-    world.detect(threaded);
-    alone.detect(single);
-    EXPECT_EQ(threaded.size(), n);  // the small boxes are apart: every pair has the huge box
-    EXPECT_EQ(threaded, single) << "the thread count changed the pairs or their order";
+    const std::vector<Pair> threaded = pairs_beside_one_thread(world, boxes);
+    EXPECT_EQ(threaded.size(), n);                       // the small boxes are apart: every pair has the huge box
     if (test_pipeline() == Pipeline::persistent_cuts) {  // no copy of the pairs is kept
         EXPECT_LT(world.bytes_held(), n * (sizeof(typename TestFixture::BoxT) + 256));
     }
@@ -223,17 +239,7 @@ TYPED_TEST(WorldLifeCycleTest, OversizedBoxesOverlappingOneAnotherBeyondABufferO
     const std::size_t small = 4000;  // most boxes, so that the planes are kept a small box apart
     const std::size_t big = 760;
     const std::size_t side = D == 2 ? 64 : 16;  // side^Dim >= small grid places
-    std::vector<typename TestFixture::BoxT> boxes;
-    for (std::size_t i = 0; i < small; ++i) {
-        typename TestFixture::BoxT box;
-        std::size_t rest = i;
-        for (int k = 0; k < D; ++k) {
-            box.min[k] = static_cast<R>(2 * (rest % side));
-            box.max[k] = box.min[k] + R{1};
-            rest /= side;
-        }
-        boxes.push_back(box);
-    }
+    std::vector<typename TestFixture::BoxT> boxes = boxes_apart<R, D>(small, side);
     for (std::size_t i = 0; i < big; ++i) {
         typename TestFixture::BoxT box;
         for (int k = 0; k < D; ++k) {
@@ -246,17 +252,11 @@ TYPED_TEST(WorldLifeCycleTest, OversizedBoxesOverlappingOneAnotherBeyondABufferO
     settings.threads = 2;
     settings.profile = true;
     World<R, D> world(settings);
-    World<R, D> alone(test_settings());
-    world.assign(boxes);
-    alone.assign(boxes);
-    std::vector<Pair> threaded, single;
-    world.detect(threaded);
-    alone.detect(single);
+    const std::vector<Pair> threaded = pairs_beside_one_thread(world, boxes);
     if (test_pipeline() == Pipeline::persistent_cuts) {
         EXPECT_EQ(world.last_profile().oversized_boxes, big);
     }
     EXPECT_EQ(threaded.size(), big * (big - 1) / 2 + big * small);
-    EXPECT_EQ(threaded, single) << "the thread count changed the pairs or their order";
     this->assign(boxes);
     this->check("every big box over every box");
 }
