@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "peers/peer_factories.hpp"
 
-#include <sstream>
-
+#include "peers/smb_phases.hpp"
 #include "smb/detector.hpp"
 #include "smb/workload/swap_remove_mirror.hpp"
 
@@ -18,8 +17,9 @@ namespace {
 template <int Dim>
 class SmbDetectorPeer final : public Peer<Dim> {
 public:
-    SmbDetectorPeer(const DetectorSettings& settings, std::size_t renumber_every)
-        : detector_(settings), renumber_every_(renumber_every) {}
+    // Profiled, for the phases of details_json(), as the World peer.
+    SmbDetectorPeer(DetectorSettings settings, std::size_t renumber_every)
+        : detector_(profiled(settings)), renumber_every_(renumber_every) {}
 
     /// Untimed: a user's simulation keeps its bodies' boxes in its own array, moved in place and
     /// swap-removed, so the broad phase never copies them there; the scene hands over every box
@@ -35,21 +35,19 @@ public:
 
     void step(const SceneStep<Dim>& /*step*/, std::vector<Pair>& pairs) override {
         find_pairs(pairs);
+        phases_.add(detector_.last_profile(), detector_.last_stats());
         ++steps_;
         if (renumber_every_ > 0 && steps_ % renumber_every_ == 0) renumber();
-        total_seconds_ += detector_.last_stats().total_seconds;
-        bytes_held_ = detector_.bytes_held();
     }
 
-    [[nodiscard]] std::string details_json() const override {
-        if (steps_ == 0) return {};
-        std::ostringstream json;
-        json << "\"smb_detect_s\":" << total_seconds_ / static_cast<double>(steps_)
-             << ",\"smb_bytes_held\":" << bytes_held_;
-        return json.str();
-    }
+    [[nodiscard]] std::string details_json() const override { return phases_.json(); }
 
 private:
+    static DetectorSettings profiled(DetectorSettings settings) {
+        settings.profile = true;
+        return settings;
+    }
+
     /// Timed: the detection over the array, and its indices turned into the scene's ids.
     void find_pairs(std::vector<Pair>& pairs) {
         pairs.clear();  // as every peer: detect() then has no old pairs to keep
@@ -69,8 +67,7 @@ private:
     Detector<float, Dim> detector_;
     std::size_t renumber_every_ = 0;
     std::size_t steps_ = 0;
-    double total_seconds_ = 0;
-    std::size_t bytes_held_ = 0;
+    SmbPhases phases_;
 };
 
 }  // namespace

@@ -2,9 +2,9 @@
 #include "peers/peer_factories.hpp"
 
 #include <span>
-#include <sstream>
 #include <type_traits>
 
+#include "peers/smb_phases.hpp"
 #include "smb/world.hpp"
 
 namespace smb::bench {
@@ -36,7 +36,6 @@ public:
         pairs.clear();  // as every peer: detect() then has no old pairs to keep
         world_.detect(pairs);
         phases_ = {};
-        total_seconds_ = 0;
     }
 
     void step(const SceneStep<Dim>& step, std::vector<Pair>& pairs) override {
@@ -47,41 +46,11 @@ public:
             world_.insert(step.ids.subspan(step.first_inserted), boxes.subspan(step.first_inserted));
         pairs.clear();  // as every peer: detect() then has no old pairs to keep
         const DetectStats stats = world_.detect(pairs);
-        const DetectProfile& profile = world_.last_profile();
-        ++steps_;
-        phases_.update_seconds += profile.update_seconds;
-        phases_.scan_seconds += profile.scan_seconds;
-        phases_.quantile_seconds += profile.quantile_seconds;
-        phases_.list_sort_seconds += profile.list_sort_seconds;
-        phases_.cut_regroup_seconds += profile.cut_regroup_seconds;
-        phases_.check_seconds += profile.check_seconds;
-        phases_.copy_seconds += profile.copy_seconds;
-        for (std::size_t level = 0; level < profile.level_seconds.size(); ++level)
-            phases_.level_seconds[level] += profile.level_seconds[level];
-        phases_.sort_moves += profile.sort_moves;
-        phases_.cells = profile.cells;
-        phases_.oversized_boxes = profile.oversized_boxes;
-        total_seconds_ += stats.total_seconds;
-        bytes_held_ = stats.bytes_held;
+        phases_.add(world_.last_profile(), stats);
     }
 
     // Where detect() spends its time, averaged over the steps after the first.
-    [[nodiscard]] std::string details_json() const override {
-        if (steps_ == 0) return {};
-        const double n = static_cast<double>(steps_);
-        std::ostringstream json;
-        json << "\"smb_update_s\":" << phases_.update_seconds / n << ",\"smb_scan_s\":" << phases_.scan_seconds / n
-             << ",\"smb_quantile_s\":" << phases_.quantile_seconds / n
-             << ",\"smb_list_sort_s\":" << phases_.list_sort_seconds / n
-             << ",\"smb_cut_regroup_s\":" << phases_.cut_regroup_seconds / n
-             << ",\"smb_check_s\":" << phases_.check_seconds / n << ",\"smb_copy_s\":" << phases_.copy_seconds / n
-             << ",\"smb_level_s\":[" << phases_.level_seconds[0] / n << ',' << phases_.level_seconds[1] / n << ','
-             << phases_.level_seconds[2] / n << "],\"smb_detect_s\":" << total_seconds_ / n
-             << ",\"smb_sort_moves\":" << static_cast<double>(phases_.sort_moves) / n
-             << ",\"smb_cells\":" << phases_.cells << ",\"smb_oversized\":" << phases_.oversized_boxes
-             << ",\"smb_bytes_held\":" << bytes_held_;
-        return json.str();
-    }
+    [[nodiscard]] std::string details_json() const override { return phases_.json(); }
 
 private:
     static WorldSettings profiled(WorldSettings settings) {
@@ -98,10 +67,7 @@ private:
 
     World<Real, Dim> world_;
     std::vector<Box<Real, Dim>> widened_;
-    DetectProfile phases_;
-    double total_seconds_ = 0;
-    std::size_t bytes_held_ = 0;
-    std::size_t steps_ = 0;
+    SmbPhases phases_;
 };
 
 }  // namespace
