@@ -151,10 +151,10 @@ std::size_t CellChecks<Real, Dim>::in_ordered_rounds(const Checked& checked, std
     // The ids of the positions, read once here: the order does not change while the cells are
     // checked, and a pair is a few instructions, where reading them through `checked` after each
     // report costs a chain of dependent loads.
-    const bool own_ids = checked.order.own_ids();
-    const BoxId* const ids = checked.order.ids().data();
-    const Slot* const slots = checked.order.order().data();
-    auto id_at = [own_ids, ids, slots](Position position) { return own_ids ? ids[position] : BoxId{slots[position]}; };
+    const bool wide = checked.order.wide();
+    const BoxId* const wide_ids = checked.order.wide_ids().data();
+    const std::uint32_t* const ids = checked.order.narrow_ids().data();
+    auto id_at = [wide, wide_ids, ids](Position position) { return wide ? wide_ids[position] : BoxId{ids[position]}; };
     auto report_ids = [&report, &checked, id_at](Position a, Position b, bool sure = false) {
         if (checked.confirm(a, b, sure)) report(id_at(a), id_at(b));
     };
@@ -207,17 +207,17 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
     const std::span<const Position> cells = checked.cells.entries;
     const std::span<const std::uint32_t> cell_begin = checked.cells.begin;
     const std::uint32_t k = checked.cells.cuts->segments(Dim - 1);
-    const bool own_ids = checked.order.own_ids();
-    const std::span<const BoxId> ids = checked.order.ids();
-    const std::span<const Slot> slots = checked.order.order();
+    const bool wide = checked.order.wide();
+    const std::span<const BoxId> wide_ids = checked.order.wide_ids();
+    const std::span<const std::uint32_t> ids = checked.order.narrow_ids();
     // The boxes of the cells ahead lie in a few runs of the ordered array, mostly beyond L2: ask
     // for them (and for their ids, which the report reads) while this cell is checked.
     auto prefetch_entries = [&](std::size_t from_cell, std::size_t to_cell) {
         if (to_cell >= cell_begin.size()) return;
         for (std::uint32_t i = cell_begin[from_cell]; i < cell_begin[to_cell]; ++i) {
             prefetch_whole(&boxes[cells[i]]);
-            __builtin_prefetch(own_ids ? static_cast<const void*>(&ids[cells[i]])
-                                       : static_cast<const void*>(&slots[cells[i]]));
+            __builtin_prefetch(wide ? static_cast<const void*>(&wide_ids[cells[i]])
+                                    : static_cast<const void*>(&ids[cells[i]]));
         }
     };
     // A column holds all its boxes in its first cell, the others being empty, so that the cells
@@ -237,14 +237,14 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
         if (swept_columns) {
             // Swept at every size, so that every column is left in x order for its queries.
             moves +=
-                own_ids ? cell_pairs.check_by_sweep(entries, boxes, ids, checked.cells.floor_of(cell), collect, home)
-                        : cell_pairs.check_by_sweep(entries, boxes, slots, checked.cells.floor_of(cell), collect, home);
+                wide ? cell_pairs.check_by_sweep(entries, boxes, wide_ids, checked.cells.floor_of(cell), collect, home)
+                     : cell_pairs.check_by_sweep(entries, boxes, ids, checked.cells.floor_of(cell), collect, home);
             const std::span<const std::uint32_t> sorted = cell_pairs.swept_positions();
             std::copy(sorted.begin(), sorted.end(), checked.columns.entries.begin() + first);
             checked.columns.widest[cell] = cell_pairs.widest_x();
         } else {
-            moves += own_ids ? cell_pairs.check(entries, boxes, ids, checked.cells.floor_of(cell), collect, home)
-                             : cell_pairs.check(entries, boxes, slots, checked.cells.floor_of(cell), collect, home);
+            moves += wide ? cell_pairs.check(entries, boxes, wide_ids, checked.cells.floor_of(cell), collect, home)
+                          : cell_pairs.check(entries, boxes, ids, checked.cells.floor_of(cell), collect, home);
         }
         if (!visitors_ || visitors_->begin.empty()) continue;
         const std::span<const Position> visitors(visitors_->boxes.data() + visitors_->begin[cell],
@@ -295,16 +295,16 @@ void CellChecks<Real, Dim>::check_oversized(const Checked& checked, Report& repo
     CellFloor<Real, Dim> everywhere{};
     everywhere.fill(kNoPlane);
     swept_oversized_.clear();
-    in_ordered_rounds(checked, 1, report, swept_oversized_,
-                      [&](std::size_t, auto& collect, BulkVector<Position>& unused_home, const bool*) {
-                          CellPairs<Real, Dim>& cell_pairs = cell_pairs_.mine();
-                          return checked.order.own_ids()
-                                     ? cell_pairs.check_by_sweep(checked.oversized, checked.boxes, checked.order.ids(),
-                                                                 everywhere, collect, unused_home)
-                                     : cell_pairs.check_by_sweep(checked.oversized, checked.boxes,
-                                                                 checked.order.order(), everywhere, collect,
-                                                                 unused_home);
-                      });
+    in_ordered_rounds(
+        checked, 1, report, swept_oversized_,
+        [&](std::size_t, auto& collect, BulkVector<Position>& unused_home, const bool*) {
+            CellPairs<Real, Dim>& cell_pairs = cell_pairs_.mine();
+            return checked.order.wide()
+                       ? cell_pairs.check_by_sweep(checked.oversized, checked.boxes, checked.order.wide_ids(),
+                                                   everywhere, collect, unused_home)
+                       : cell_pairs.check_by_sweep(checked.oversized, checked.boxes, checked.order.narrow_ids(),
+                                                   everywhere, collect, unused_home);
+        });
 }
 
 }  // namespace smb::detail

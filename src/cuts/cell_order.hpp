@@ -96,7 +96,8 @@ public:
         // does little else, so the requests must start far ahead to keep enough in flight.
         constexpr std::size_t ahead = 64;
         const auto count = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for num_threads(threads) schedule(static)
+        BoxId high = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(| : high)
         for (std::ptrdiff_t j = 0; j < count; ++j) {
             const auto i = static_cast<std::size_t>(j);
             if (i + ahead < n) {
@@ -104,11 +105,17 @@ public:
                 if (own_ids_ && i + ahead >= carried_count) __builtin_prefetch(&store_ids[order_[i + ahead]]);
             }
             ordered_[i] = held_as<Real>(store_boxes[order_[i]], origin);
-            if (own_ids_) ordered_ids_[i] = i < carried_count ? BoxId{carried[i]} : store_ids[order_[i]];
+            if (own_ids_) {
+                const BoxId id = i < carried_count ? BoxId{carried[i]} : store_ids[order_[i]];
+                narrow_ids_[i] = static_cast<std::uint32_t>(id);
+                high |= id >> 32;
+            }
         }
+        widen_ids_where_needed(high, store_ids);
 #ifdef SMB_VALIDATE
         for (std::size_t i = 0; i < carried_count; ++i)
-            SMB_ASSERT(ordered_ids_[i] == store_ids[order_[i]], "a carried id names the box of its slot");
+            SMB_ASSERT(id_at(static_cast<Position>(i)) == store_ids[order_[i]],
+                       "a carried id names the box of its slot");
 #endif
         forget_carried();
     }
@@ -151,7 +158,8 @@ public:
                 offset += here;
             }
         }
-#pragma omp parallel for num_threads(threads) schedule(static, 1)
+        BoxId high = 0;
+#pragma omp parallel for num_threads(threads) schedule(static, 1) reduction(| : high)
         for (std::ptrdiff_t t = 0; t < static_cast<std::ptrdiff_t>(shares); ++t) {
             std::uint32_t* next = cursor.data() + static_cast<std::size_t>(t) * columns;
             for (std::size_t slot = share_begin(static_cast<std::size_t>(t));
@@ -159,21 +167,32 @@ public:
                 const std::uint32_t position = next[column_at[slot]]++;
                 order_[position] = static_cast<Slot>(slot);
                 ordered_[position] = held_as<Real>(store_boxes[slot], origin);
-                if (own_ids_) ordered_ids_[position] = store_ids[slot];
+                if (own_ids_) {
+                    narrow_ids_[position] = static_cast<std::uint32_t>(store_ids[slot]);
+                    high |= store_ids[slot] >> 32;
+                }
             }
         }
+        widen_ids_where_needed(high, store_ids);
     }
 
     /// The boxes in order, as copied by the last copy().
     [[nodiscard]] std::span<const Box<Real, Dim>> boxes() const noexcept { return ordered_; }
-    /// Whether the ids were given (ids()); else box `slot` has id `slot` (order()).
+    /// Whether the ids were given; else box `slot` has id `slot` (order()).
     [[nodiscard]] bool own_ids() const noexcept { return own_ids_; }
-    [[nodiscard]] std::span<const BoxId> ids() const noexcept { return ordered_ids_; }
+    /// Whether some id of the last copy needs more than 32 bits: the ids are then wide_ids().
+    [[nodiscard]] bool wide() const noexcept { return wide_; }
+    /// Unless wide(), the id of the box at each position: the given id, or its slot where none
+    /// were given (while a detection runs, order_ still maps positions to slots, so slot ids need
+    /// no array of their own). Ids are almost always counted from zero: 32 bits hold them, half
+    /// the bytes to copy, keep and read at each pair of a 64-bit id.
+    [[nodiscard]] std::span<const std::uint32_t> narrow_ids() const noexcept {
+        return own_ids_ ? std::span<const std::uint32_t>(narrow_ids_) : std::span<const std::uint32_t>(order_);
+    }
+    [[nodiscard]] std::span<const BoxId> wide_ids() const noexcept { return wide_ids_; }
 
-    /// The id of the box at `position`: while a detection runs, order_ still maps positions to
-    /// slots, so slot ids need no array of their own (8 bytes a box less for a Detector).
     [[nodiscard]] BoxId id_at(Position position) const noexcept {
-        return own_ids_ ? ordered_ids_[position] : BoxId{order_[position]};
+        return wide_ ? wide_ids_[position] : BoxId{narrow_ids()[position]};
     }
 
     /// Where the cell check writes the positions of the home boxes, cell by cell: the next order.
@@ -189,30 +208,28 @@ public:
     void advance(int threads, bool ids_kept, BulkVector<std::uint32_t>& carried_ids) {
         const std::size_t n = next_order_.size();
         const auto count = static_cast<std::ptrdiff_t>(n);
-        if (!own_ids_ || !ids_kept) {
+        if (!own_ids_ || !ids_kept || wide_) {
 #pragma omp parallel for num_threads(threads) schedule(static)
             for (std::ptrdiff_t i = 0; i < count; ++i) next_order_[i] = order_[next_order_[i]];
             order_.swap(next_order_);
             return;
         }
         resize_with_slack(carried_ids, n);
-        std::uint32_t* low = carried_ids.data();
-        BoxId high = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(| : high)
+        std::uint32_t* carried = carried_ids.data();
+#pragma omp parallel for num_threads(threads) schedule(static)
         for (std::ptrdiff_t i = 0; i < count; ++i) {
             const Position position = next_order_[i];
-            const BoxId id = ordered_ids_[position];
-            low[i] = static_cast<std::uint32_t>(id);
-            high |= id >> 32;
+            carried[i] = narrow_ids_[position];
             next_order_[i] = order_[position];
         }
         order_.swap(next_order_);
-        if (high == 0) carried_count_ = n;
+        carried_count_ = n;
     }
 
     [[nodiscard]] std::size_t bytes_held() const noexcept {
         return (order_.capacity() + next_order_.capacity()) * sizeof(Slot) +
-               ordered_.capacity() * sizeof(Box<Real, Dim>) + ordered_ids_.capacity() * sizeof(BoxId);
+               ordered_.capacity() * sizeof(Box<Real, Dim>) + narrow_ids_.capacity() * sizeof(std::uint32_t) +
+               wide_ids_.capacity() * sizeof(BoxId);
     }
 
 private:
@@ -223,18 +240,32 @@ private:
         resize_with_slack(ordered_, n);
         own_ids_ = !store_ids.empty();
         if (own_ids_)
-            resize_with_slack(ordered_ids_, n);
+            resize_with_slack(narrow_ids_, n);
         else
-            BulkVector<BoxId>().swap(ordered_ids_);
+            BulkVector<std::uint32_t>().swap(narrow_ids_);
     }
 
-    BulkVector<Slot> order_;              // every slot once: last step's cells, x-sorted within swept ones
-    BulkVector<Position> next_order_;     // positions of the home boxes, cell by cell
-    BulkVector<Box<Real, Dim>> ordered_;  // the boxes in order_'s order, copied each step
-    BulkVector<BoxId> ordered_ids_;       // and their ids, unless the ids are the slots
-    bool own_ids_ = true;                 // ids were given; else box `slot` has id `slot`
-    std::size_t listed_ = 0;              // slots [0, listed_) are in order_; later ones are new
-    std::size_t carried_count_ = 0;       // order_'s first places whose ids advance() carried
+    /// After a copy that kept the low 32 bits of each id: where some id had more (`high`), the
+    /// whole ids are gathered again (rare: ids made of hashes or handles); else none are held.
+    void widen_ids_where_needed(BoxId high, std::span<const BoxId> store_ids) {
+        wide_ = high != 0;
+        if (!wide_) {
+            BulkVector<BoxId>().swap(wide_ids_);
+            return;
+        }
+        resize_with_slack(wide_ids_, order_.size());
+        for (std::size_t p = 0; p < order_.size(); ++p) wide_ids_[p] = store_ids[order_[p]];
+    }
+
+    BulkVector<Slot> order_;                // every slot once: last step's cells, x-sorted within swept ones
+    BulkVector<Position> next_order_;       // positions of the home boxes, cell by cell
+    BulkVector<Box<Real, Dim>> ordered_;    // the boxes in order_'s order, copied each step
+    BulkVector<std::uint32_t> narrow_ids_;  // and their ids, unless the ids are the slots or wide_
+    BulkVector<BoxId> wide_ids_;            // their ids, where some id needs more than 32 bits
+    bool own_ids_ = true;                   // ids were given; else box `slot` has id `slot`
+    bool wide_ = false;                     // the last copy's ids are wide_ids_
+    std::size_t listed_ = 0;                // slots [0, listed_) are in order_; later ones are new
+    std::size_t carried_count_ = 0;         // order_'s first places whose ids advance() carried
 };
 
 }  // namespace smb::detail

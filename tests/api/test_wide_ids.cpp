@@ -204,6 +204,47 @@ TYPED_TEST(WideIdsTest, PairsAndEventsOverManySteps) {
     }
 }
 
+TYPED_TEST(WideIdsTest, IdsPastThirtyTwoBitsArriveAndLeaveAWorldOfSmallIds) {
+    // A world of small ids holds and carries them in 32 bits from one detection to the next; an
+    // id past 2^32 (one sharing its low bits with a small id among them) makes it hold every id
+    // whole, and its removal narrows them again. Each switch against brute force, with moves.
+    using World = TypeParam;
+    using Real = typename World::real_type;
+    constexpr int Dim = World::dimension;
+    Random random(35006);
+    const double side = 30;
+    World world;
+    Scene<World> scene;
+    for (BoxId id = 0; id < 1500; ++id) {
+        const auto box = particle_box<Real, Dim>(random, side, 0.3, 2.5);
+        world.insert(id, box);
+        scene.boxes[id] = box;
+    }
+    const std::vector<BoxId> wide = {kTwo32 + 3, kTop, kTwo63 + 700};
+    std::vector<Pair> pairs;
+    for (int step = 0; step < 24; ++step) {
+        if (step % 8 == 3) {
+            for (const BoxId id : wide) {
+                // Near a small id's box (mostly over it), so that the wide ids are in pairs.
+                const auto box = perturbed<Real, Dim>(random, scene.boxes[id & 1023], 0.3, 0.05);
+                world.insert(id, box);
+                scene.boxes[id] = box;
+            }
+        } else if (step % 8 == 6) {
+            for (const BoxId id : wide) {
+                world.remove(id);
+                scene.boxes.erase(id);
+            }
+        }
+        world.detect(pairs);
+        ASSERT_TRUE(same_pairs(pairs, scene.pairs(false))) << "step " << step;
+        for (auto& [id, box] : scene.boxes) {
+            box = perturbed<Real, Dim>(random, box, 0.3, 0.05);
+            world.update(id, box);
+        }
+    }
+}
+
 TYPED_TEST(WideIdsTest, PeriodicPairsOverManySteps) {
     using World = TypeParam;
     using Real = typename World::real_type;

@@ -71,41 +71,46 @@ TEST(SampledCuts, CutsEveryGroupAboveTheColumnsInOrderAndSetsItsBand) {
 TEST(SampledCuts, CopyByColumnCopiesEverySlotOnceGroupedByColumn) {
     std::mt19937_64 random(32);
     const std::vector<Box<double, 3>> boxes = lattice_boxes<double, 3>(5000, 30, 6, random);
-    std::vector<BoxId> ids(boxes.size());
-    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = 1000 + 7 * i;
     const std::array<double, 3> origin{15.0, -3.0, 0.5};
     CutTree<float, 3> cuts;
     cuts.reshape(4);
     SampledCuts<float, 3, double> sampled;
     sampled.cut(boxes, origin, cuts);
-    for (const int threads : {1, 3}) {
-        SCOPED_TRACE(threads);
-        CellOrder<float, 3, double> order;
-        order.list_arrivals(boxes.size());
-        order.copy_by_column(
-            boxes, ids, origin, cuts.groups(2), [&](const Box<float, 3>& box) { return cuts.column_of(box); }, threads);
-        const std::span<const Slot> slots = order.order();
-        ASSERT_EQ(slots.size(), boxes.size());
-        std::vector<bool> seen(boxes.size(), false);
-        for (std::size_t i = 0; i < slots.size(); ++i) {
-            ASSERT_LT(slots[i], boxes.size());
-            ASSERT_FALSE(seen[slots[i]]) << "slot " << slots[i] << " twice";
-            seen[slots[i]] = true;
-            const Box<float, 3> held = held_box<double, 3>(boxes[slots[i]], origin);
-            for (int k = 0; k < 3; ++k) {
-                ASSERT_EQ(order.boxes()[i].min[k], held.min[k]);
-                ASSERT_EQ(order.boxes()[i].max[k], held.max[k]);
-            }
-            ASSERT_EQ(order.ids()[i], ids[slots[i]]);
-            if (i == 0) continue;
-            const std::uint32_t before = cuts.column_of(order.boxes()[i - 1]);
-            const std::uint32_t here = cuts.column_of(order.boxes()[i]);
-            ASSERT_LE(before, here) << "at " << i;
-            if (before == here) {
-                ASSERT_LT(slots[i - 1], slots[i]) << "at " << i;
+    // Ids held in 32 bits, and ids that need 64 (the first past 2^32: the copy widens them all).
+    for (const BoxId first : {BoxId{1000}, (BoxId{1} << 32) - 7 * 2500})
+        for (const int threads : {1, 3}) {
+            SCOPED_TRACE(first);
+            SCOPED_TRACE(threads);
+            std::vector<BoxId> ids(boxes.size());
+            for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = first + 7 * i;
+            CellOrder<float, 3, double> order;
+            order.list_arrivals(boxes.size());
+            order.copy_by_column(
+                boxes, ids, origin, cuts.groups(2), [&](const Box<float, 3>& box) { return cuts.column_of(box); },
+                threads);
+            ASSERT_EQ(order.wide(), first != 1000);
+            const std::span<const Slot> slots = order.order();
+            ASSERT_EQ(slots.size(), boxes.size());
+            std::vector<bool> seen(boxes.size(), false);
+            for (std::size_t i = 0; i < slots.size(); ++i) {
+                ASSERT_LT(slots[i], boxes.size());
+                ASSERT_FALSE(seen[slots[i]]) << "slot " << slots[i] << " twice";
+                seen[slots[i]] = true;
+                const Box<float, 3> held = held_box<double, 3>(boxes[slots[i]], origin);
+                for (int k = 0; k < 3; ++k) {
+                    ASSERT_EQ(order.boxes()[i].min[k], held.min[k]);
+                    ASSERT_EQ(order.boxes()[i].max[k], held.max[k]);
+                }
+                ASSERT_EQ(order.id_at(static_cast<Position>(i)), ids[slots[i]]);
+                if (i == 0) continue;
+                const std::uint32_t before = cuts.column_of(order.boxes()[i - 1]);
+                const std::uint32_t here = cuts.column_of(order.boxes()[i]);
+                ASSERT_LE(before, here) << "at " << i;
+                if (before == here) {
+                    ASSERT_LT(slots[i - 1], slots[i]) << "at " << i;
+                }
             }
         }
-    }
 }
 
 /// Boxes of sides 0.4 to 1 in a layer `thickness` deep on axis `thin` and 100 wide on the others.
