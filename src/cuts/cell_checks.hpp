@@ -236,15 +236,16 @@ std::size_t CellChecks<Real, Dim>::check_column(const Checked& checked, std::siz
         const std::span<const Position> entries(cells.data() + first, size);
         if (swept_columns) {
             // Swept at every size, so that every column is left in x order for its queries.
-            moves +=
-                wide ? cell_pairs.check_by_sweep(entries, boxes, wide_ids, checked.cells.floor_of(cell), collect, home)
-                     : cell_pairs.check_by_sweep(entries, boxes, ids, checked.cells.floor_of(cell), collect, home);
+            moves += checked.order.with_ids([&](auto names) {
+                return cell_pairs.check_by_sweep(entries, boxes, names, checked.cells.floor_of(cell), collect, home);
+            });
             const std::span<const std::uint32_t> sorted = cell_pairs.swept_positions();
             std::copy(sorted.begin(), sorted.end(), checked.columns.entries.begin() + first);
             checked.columns.widest[cell] = cell_pairs.widest_x();
         } else {
-            moves += wide ? cell_pairs.check(entries, boxes, wide_ids, checked.cells.floor_of(cell), collect, home)
-                          : cell_pairs.check(entries, boxes, ids, checked.cells.floor_of(cell), collect, home);
+            moves += checked.order.with_ids([&](auto names) {
+                return cell_pairs.check(entries, boxes, names, checked.cells.floor_of(cell), collect, home);
+            });
         }
         if (!visitors_ || visitors_->begin.empty()) continue;
         const std::span<const Position> visitors(visitors_->boxes.data() + visitors_->begin[cell],
@@ -295,16 +296,14 @@ void CellChecks<Real, Dim>::check_oversized(const Checked& checked, Report& repo
     CellFloor<Real, Dim> everywhere{};
     everywhere.fill(kNoPlane);
     swept_oversized_.clear();
-    in_ordered_rounds(
-        checked, 1, report, swept_oversized_,
-        [&](std::size_t, auto& collect, BulkVector<Position>& unused_home, const bool*) {
-            CellPairs<Real, Dim>& cell_pairs = cell_pairs_.mine();
-            return checked.order.wide()
-                       ? cell_pairs.check_by_sweep(checked.oversized, checked.boxes, checked.order.wide_ids(),
-                                                   everywhere, collect, unused_home)
-                       : cell_pairs.check_by_sweep(checked.oversized, checked.boxes, checked.order.narrow_ids(),
-                                                   everywhere, collect, unused_home);
-        });
+    in_ordered_rounds(checked, 1, report, swept_oversized_,
+                      [&](std::size_t, auto& collect, BulkVector<Position>& unused_home, const bool*) {
+                          CellPairs<Real, Dim>& cell_pairs = cell_pairs_.mine();
+                          return checked.order.with_ids([&](auto ids) {
+                              return cell_pairs.check_by_sweep(checked.oversized, checked.boxes, ids, everywhere,
+                                                               collect, unused_home);
+                          });
+                      });
 }
 
 }  // namespace smb::detail

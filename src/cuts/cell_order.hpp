@@ -190,6 +190,12 @@ public:
         return own_ids_ ? std::span<const std::uint32_t>(narrow_ids_) : std::span<const std::uint32_t>(order_);
     }
     [[nodiscard]] std::span<const BoxId> wide_ids() const noexcept { return wide_ids_; }
+    /// use(ids) with the ids that name the positions, wide_ids() or narrow_ids(), for the
+    /// passes that read them in a loop of their own.
+    template <class Use>
+    decltype(auto) with_ids(Use&& use) const {
+        return wide_ ? use(wide_ids()) : use(narrow_ids());
+    }
 
     [[nodiscard]] BoxId id_at(Position position) const noexcept {
         return wide_ ? wide_ids_[position] : BoxId{narrow_ids()[position]};
