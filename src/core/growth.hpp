@@ -20,4 +20,17 @@ void resize_with_slack(Vector& vector, std::size_t size) {
     vector.resize(size);
 }
 
+/// resize_with_slack() for an array that is written over whole after it: where it must grow, its
+/// contents are dropped and its block freed first, so that growing copies nothing and never holds
+/// the old block and the new one at once.
+template <class Vector>
+void resize_for_overwrite(Vector& vector, std::size_t size) {
+    if (size > vector.capacity()) {
+        const bool first = vector.capacity() == 0;
+        Vector().swap(vector);
+        vector.reserve(first ? size : size + size / 16);
+    }
+    vector.resize(size);
+}
+
 }  // namespace smb::detail

@@ -134,7 +134,7 @@ public:
         size_copy(n, store_ids);
         // Each slot's column is held where the cell check writes the next order: no memory of
         // its own, and the check finds those pages mapped.
-        resize_with_slack(next_order_, n);
+        resize_for_overwrite(next_order_, n);
         std::uint32_t* column_at = next_order_.data();
         const auto shares = static_cast<std::size_t>(threads);
         std::vector<std::uint32_t> cursor(shares * columns, 0U);
@@ -220,7 +220,7 @@ public:
             order_.swap(next_order_);
             return;
         }
-        resize_with_slack(carried_ids, n);
+        resize_for_overwrite(carried_ids, n);
         std::uint32_t* carried = carried_ids.data();
 #pragma omp parallel for num_threads(threads) schedule(static)
         for (std::ptrdiff_t i = 0; i < count; ++i) {
@@ -243,10 +243,10 @@ private:
 
     /// Room for n copied boxes, and for their ids where the caller gives them.
     void size_copy(std::size_t n, std::span<const BoxId> store_ids) {
-        resize_with_slack(ordered_, n);
+        resize_for_overwrite(ordered_, n);
         own_ids_ = !store_ids.empty();
         if (own_ids_)
-            resize_with_slack(narrow_ids_, n);
+            resize_for_overwrite(narrow_ids_, n);
         else
             BulkVector<std::uint32_t>().swap(narrow_ids_);
     }

@@ -44,7 +44,7 @@ public:
         const std::size_t n = boxes.size();
         threads_ = threads;
         workers_.resize(threads);
-        resize_with_slack(oversized_, n);
+        resize_for_overwrite(oversized_, n);
         std::fill(oversized_.begin(), oversized_.end(), std::uint8_t{0});
         oversized_list_.clear();
         timed_ = timed;
@@ -192,7 +192,7 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
                                                        std::vector<std::uint32_t>& out_begin) {
     const std::uint32_t k = cuts.segments(0);
     const auto shares = static_cast<std::size_t>(threads_);
-    resize_with_slack(ranges, n);  // per entry: first | last segment << 16
+    resize_for_overwrite(ranges, n);  // per entry: first | last segment << 16
     auto share_begin = [&](std::size_t t) { return n * t / shares; };
     auto locate_shares = [&]() {
         std::uint32_t fullest = 0;
@@ -242,7 +242,7 @@ double LevelRegrouping<Real, Dim>::regroup_first_level(std::size_t n, CutTree<Re
         }
     }
     out_begin[k] = offset;
-    resize_with_slack(out, offset);
+    resize_for_overwrite(out, offset);
     Position* target = out.data();
     const std::uint32_t* entry_ranges = ranges.data();
 #pragma omp parallel for num_threads(threads_) schedule(static, 1)
@@ -276,7 +276,7 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
     const std::uint32_t k = cuts.segments(level);
     const int axis = axis_of_level(level);
     SMB_ASSERT(in_begin.size() == groups + 1, "one offset per group");
-    resize_with_slack(ranges, in.size());
+    resize_for_overwrite(ranges, in.size());
     // The index array: registrations per segment (shifted by one), turned into offsets below.
     counts_.resize(groups * k + 1);
     std::uint32_t* count = counts_.data();
@@ -337,7 +337,7 @@ double LevelRegrouping<Real, Dim>::regroup_level(int level, CutTree<Real, Dim>& 
     }
     for (std::size_t s = 0; s < groups * k; ++s) count[s + 1] += count[s];
     out_begin.assign(count, count + groups * k + 1);
-    resize_with_slack(out, out_begin.back());
+    resize_for_overwrite(out, out_begin.back());
     // The stack pass: each entry goes to the next free place of its segments, keeping the order
     // the entries came in (last step's), which keeps each cell's boxes in a few runs of the
     // ordered array, and a swept cell almost sorted.

@@ -156,7 +156,7 @@ private:
         rebuilt_ = true;
         const std::size_t n = input_.size();
         // held_ serves as the fat boxes by slot until the positions are known.
-        resize_with_slack(held_, n + 1);  // and one box of padding for overlap_bit()
+        resize_for_overwrite(held_, n + 1);  // and one box of padding for overlap_bit()
         for (std::size_t slot = 0; slot < n; ++slot)
             held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_), skin_);
         cells_.forget_slots_from(n);
@@ -169,8 +169,8 @@ private:
         }
         const std::span<const Slot> order = cells_.order();
         slot_of_.assign(order.begin(), order.end());
-        resize_with_slack(position_of_, n);
-        resize_with_slack(fat_, n);
+        resize_for_overwrite(position_of_, n);
+        resize_for_overwrite(fat_, n);
         for (std::size_t p = 0; p < n; ++p) {
             position_of_[slot_of_[p]] = static_cast<Position>(p);
             fat_[p] = held_[slot_of_[p]];
