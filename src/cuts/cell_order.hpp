@@ -259,7 +259,7 @@ private:
             BulkVector<BoxId>().swap(wide_ids_);
             return;
         }
-        resize_with_slack(wide_ids_, order_.size());
+        resize_for_overwrite(wide_ids_, order_.size());
         for (std::size_t p = 0; p < order_.size(); ++p) wide_ids_[p] = store_ids[order_[p]];
     }
 
