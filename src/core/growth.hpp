@@ -9,9 +9,15 @@
 
 namespace smb::detail {
 
+/// The capacity an array grows to for `size` elements: exact at its first fill, a sixteenth more
+/// after.
+[[nodiscard]] inline std::size_t capacity_with_slack(std::size_t size, bool first_fill) noexcept {
+    return first_fill ? size : size + size / 16;
+}
+
 template <class Vector>
 void reserve_with_slack(Vector& vector, std::size_t size) {
-    if (size > vector.capacity()) vector.reserve(vector.empty() ? size : size + size / 16);
+    if (size > vector.capacity()) vector.reserve(capacity_with_slack(size, vector.empty()));
 }
 
 template <class Vector>
@@ -26,9 +32,9 @@ void resize_with_slack(Vector& vector, std::size_t size) {
 template <class Vector>
 void resize_for_overwrite(Vector& vector, std::size_t size) {
     if (size > vector.capacity()) {
-        const bool first = vector.capacity() == 0;
+        const bool first_fill = vector.capacity() == 0;
         Vector().swap(vector);
-        vector.reserve(first ? size : size + size / 16);
+        vector.reserve(capacity_with_slack(size, first_fill));
     }
     vector.resize(size);
 }

@@ -131,7 +131,7 @@ public:
         // Kept with a sixteenth of room, as the arrays that follow N (growth.hpp).
         if (candidates_.capacity() > candidates_.size() + candidates_.size() / 8) {
             std::vector<Candidate> trimmed;
-            trimmed.reserve(candidates_.size() + candidates_.size() / 16);
+            trimmed.reserve(capacity_with_slack(candidates_.size(), false));
             trimmed.assign(candidates_.begin(), candidates_.end());
             candidates_.swap(trimmed);
         }
