@@ -5,7 +5,9 @@
 #   1. Release build with warnings as errors and the SMB invariant checks on (build-ci/),
 #      every test;
 #   2. address + undefined-behaviour sanitizer build (build-ci-asan/), every test but the
-#      consumer proof, which builds its own uninstrumented copies and was proven in step 1;
+#      consumer proof, which builds its own uninstrumented copies and was proven in step 1, and
+#      the World tests repeated on the paper's pipeline (label paper_pipeline), which step 1
+#      runs; the paper's pipeline stays under the sanitizers through its own tests;
 #   3. a minute of libFuzzer on each fuzz target (build-ci-fuzz/), where clang has libFuzzer.
 # Exits non-zero if any build or test fails. SMB_CI_BUILD_DIR and SMB_CI_ASAN_BUILD_DIR pick
 # other build folders, SMB_JOBS the parallelism (default 2).
@@ -41,7 +43,7 @@ cmake -S . -B "$asan_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RE
 cmake --build "$asan_dir" --parallel "$jobs"
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1} \
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-  ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -LE consumer
+  ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -LE 'consumer|paper_pipeline'
 
 echo "== Short fuzzing (libFuzzer, ASan + UBSan) =="
 # 40 000 inputs from seed 1 per target (SMB_FUZZ_RUNS), stopped after 60 s (SMB_FUZZ_SECONDS)
