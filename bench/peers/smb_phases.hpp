@@ -32,6 +32,7 @@ public:
         sum_.oversized_boxes = profile.oversized_boxes;
         total_seconds_ += stats.total_seconds;
         bytes_held_ = stats.bytes_held;
+        skin_candidates_ = stats.skin_candidates;
     }
 
     /// The fields, averaged over the steps; empty before the first step.
@@ -48,7 +49,8 @@ public:
              << ",\"smb_level_s\":[" << sum_.level_seconds[0] / n << ',' << sum_.level_seconds[1] / n << ','
              << sum_.level_seconds[2] / n << "],\"smb_detect_s\":" << total_seconds_ / n
              << ",\"smb_sort_moves\":" << static_cast<double>(sum_.sort_moves) / n << ",\"smb_cells\":" << sum_.cells
-             << ",\"smb_oversized\":" << sum_.oversized_boxes << ",\"smb_bytes_held\":" << bytes_held_;
+             << ",\"smb_oversized\":" << sum_.oversized_boxes << ",\"smb_bytes_held\":" << bytes_held_
+             << ",\"smb_skin_candidates\":" << skin_candidates_;
         return json.str();
     }
 
@@ -56,6 +58,7 @@ private:
     DetectProfile sum_;
     double total_seconds_ = 0;
     std::size_t bytes_held_ = 0;
+    std::size_t skin_candidates_ = 0;  // the skin list's, at the last step
     std::size_t steps_ = 0;
 };
 

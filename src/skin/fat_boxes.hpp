@@ -72,7 +72,8 @@ template <int Dim>
 template <int Dim>
 [[nodiscard]] bool inside(const Box<float, Dim>& box, const Box<float, Dim>& fat) noexcept {
     bool in = true;
-    for (int k = 0; k < Dim; ++k) in &= fat.min[k] <= box.min[k] && box.max[k] <= fat.max[k];
+    // & rather than &&: no branch per axis in the skin list's scan, where nearly every box is inside.
+    for (int k = 0; k < Dim; ++k) in &= (fat.min[k] <= box.min[k]) & (box.max[k] <= fat.max[k]);
     return in;
 }
 

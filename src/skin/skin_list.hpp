@@ -157,8 +157,7 @@ private:
         const std::size_t n = input_.size();
         // held_ serves as the fat boxes by slot until the positions are known.
         resize_for_overwrite(held_, n + 1);  // and one box of padding for overlap_bit()
-        for (std::size_t slot = 0; slot < n; ++slot)
-            held_[slot] = fattened(held_box<Input, Dim>(input_[slot], origin_), skin_);
+        for (std::size_t slot = 0; slot < n; ++slot) held_[slot] = fattened(held_of(input_[slot]), skin_);
         cells_.forget_slots_from(n);
         typename Candidates::Collector collect = candidates_.rebuild(candidate_cap(n));
         try {
@@ -193,7 +192,7 @@ private:
         constexpr std::size_t ahead = 32;
         for (std::size_t p = 0; p < count; ++p) {
             if (p + ahead < count) prefetch_whole(&input_[slot_of_[p + ahead]]);
-            held_[p] = held_box<Input, Dim>(input_[slot_of_[p]], origin_);
+            held_[p] = held_of(input_[slot_of_[p]]);
         }
         names_.gather(slot_of_);
     }
@@ -247,7 +246,7 @@ private:
             slot_of_.push_back(static_cast<Slot>(slot));
             names_.append(static_cast<Slot>(slot));
             position_of_.push_back(p);
-            held_.back() = held_box<Input, Dim>(input_[slot], origin_);
+            held_.back() = held_of(input_[slot]);
             held_.push_back(Held{});  // the padding
             fat_.push_back(Held{});
             state_.push_back(0);
@@ -284,36 +283,61 @@ private:
     };
 
     /// Positions [first, last): the caller's boxes as held floats into held_, and each checked
-    /// against its fat box.
+    /// against its fat box. A pass for each way of naming, so that the loop holds no test of it.
     void scan(std::size_t first, std::size_t last, Scan& found) {
+        if (names_.reread())
+            scan_as<true>(first, last, found);
+        else
+            scan_as<false>(first, last, found);
+    }
+
+    template <bool reread>
+    void scan_as(std::size_t first, std::size_t last, Scan& found) {
         const std::size_t n = input_.size();
         constexpr std::size_t ahead = 32;
+        const Slot* slot_of = slot_of_.data();
+        const Box<Input, Dim>* input = input_.data();
+        std::uint8_t* states = state_.data();
+        const Held* fat_of = fat_.data();
+        Held* held_of_position = held_.data();
         for (std::size_t p = first; p < last; ++p) {
-            const Slot slot = slot_of_[p];
-            std::uint8_t& state = state_[p];
-            if (slot >= n) {
-                if ((state & kGone) == 0) {
-                    state |= kGone;
+            const Slot slot = slot_of[p];
+            if (slot >= n) [[unlikely]] {
+                if ((states[p] & kGone) == 0) {
+                    states[p] |= kGone;
                     found.gone.push_back(static_cast<Position>(p));
                 }
                 continue;
             }
-            if (p + ahead < last && slot_of_[p + ahead] < n) {
-                prefetch_whole(&input_[slot_of_[p + ahead]]);
-                if (names_.reread()) names_.prefetch(slot_of_[p + ahead]);
+            if (p + ahead < last) {
+                const Slot next = slot_of[p + ahead];
+                if (next < n) {
+                    prefetch_whole(&input[next]);
+                    if constexpr (reread) names_.prefetch(next);
+                }
             }
-            const Held held = held_box<Input, Dim>(input_[slot], origin_);
-            if (names_.reread()) names_.read(static_cast<Position>(p), slot);
+            const Held held = held_of(input[slot]);
+            if constexpr (reread) names_.read(static_cast<Position>(p), slot);
             // Read before held_[p] is written: the two arrays start alike modulo 4 KiB (each its
             // own mapping), so the load after the store would wait on it (4K aliasing).
-            const Held fat = fat_[p];
-            held_[p] = held;
-            if ((state & kGone) != 0 || !inside(held, fat)) {
+            const Held fat = fat_of[p];
+            held_of_position[p] = held;
+            const std::uint8_t state = states[p];
+            if (((state & kGone) != 0) | !inside(held, fat)) [[unlikely]] {
                 names_.read(static_cast<Position>(p), slot);  // a slot back in the array has a new name
                 found.fresh.push_back(static_cast<Position>(p));
                 found.newly_moved += (state & kMoved) == 0 ? 1U : 0U;
             }
         }
+    }
+
+    /// The caller's box as the list holds it: itself where it is of floats (the origin is then
+    /// zero and every coordinate finite), else shifted and rounded (held_box.hpp).
+    [[nodiscard]] Held held_of(const Box<Input, Dim>& box) const noexcept {
+        if constexpr (kExact)
+            return box;
+        else
+            return held_box<Input, Dim>(box, origin_);
     }
 
     /// Held boxes at a and b overlap: true when their input boxes do too. `sure`: the floats
