@@ -15,22 +15,16 @@
 #include <vector>
 
 #include "core/scene_bounds.hpp"
+#include "reference/detector_shapes.hpp"
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
 
 namespace smb::detail {
 namespace {
 
-template <class Real, int DimValue>
-struct Shape {
-    using RealType = Real;
-    static constexpr int Dim = DimValue;
-};
-
 template <class T>
 class SceneBoundsTest : public ::testing::Test {};
-using Shapes = ::testing::Types<Shape<float, 2>, Shape<float, 3>, Shape<double, 2>, Shape<double, 3>>;
-TYPED_TEST_SUITE(SceneBoundsTest, Shapes);
+TYPED_TEST_SUITE(SceneBoundsTest, test::Shapes, test::ShapeNames);
 
 template <class Real, int Dim>
 std::vector<Box<Real, Dim>> random_boxes(std::size_t n, std::mt19937& random) {
@@ -47,8 +41,8 @@ std::vector<Box<Real, Dim>> random_boxes(std::size_t n, std::mt19937& random) {
 }
 
 TYPED_TEST(SceneBoundsTest, BoundsAreThoseOfAPlainLoop) {
-    using Real = typename TypeParam::RealType;
-    constexpr int Dim = TypeParam::Dim;
+    using Real = typename TypeParam::real_type;
+    constexpr int Dim = TypeParam::dimension;
     std::mt19937 random(7);
     for (const std::size_t n : {1U, 2U, 3U, 4U, 5U, 16U, 17U, 1001U}) {
         const auto boxes = random_boxes<Real, Dim>(n, random);
@@ -67,8 +61,8 @@ TYPED_TEST(SceneBoundsTest, BoundsAreThoseOfAPlainLoop) {
 }
 
 TYPED_TEST(SceneBoundsTest, EveryBadCoordinateOfEveryBoxIsNamed) {
-    using Real = typename TypeParam::RealType;
-    constexpr int Dim = TypeParam::Dim;
+    using Real = typename TypeParam::real_type;
+    constexpr int Dim = TypeParam::dimension;
     const Real nan = std::numeric_limits<Real>::quiet_NaN();
     const Real inf = std::numeric_limits<Real>::infinity();
     std::mt19937 random(11);
@@ -80,13 +74,27 @@ TYPED_TEST(SceneBoundsTest, EveryBadCoordinateOfEveryBoxIsNamed) {
                     auto broken = boxes;
                     Box<Real, Dim>& box = broken[bad_box];
                     switch (kind) {
-                        case 0: box.min[axis] = nan; break;
-                        case 1: box.max[axis] = nan; break;
-                        case 2: box.min[axis] = -inf; break;
-                        case 3: box.max[axis] = inf; break;
-                        case 4: box.min[axis] = box.max[axis] = inf; break;
-                        case 5: box.min[axis] = box.max[axis] = -inf; break;
-                        default: box.min[axis] = box.max[axis] + 1; break;
+                        case 0:
+                            box.min[axis] = nan;
+                            break;
+                        case 1:
+                            box.max[axis] = nan;
+                            break;
+                        case 2:
+                            box.min[axis] = -inf;
+                            break;
+                        case 3:
+                            box.max[axis] = inf;
+                            break;
+                        case 4:
+                            box.min[axis] = box.max[axis] = inf;
+                            break;
+                        case 5:
+                            box.min[axis] = box.max[axis] = -inf;
+                            break;
+                        default:
+                            box.min[axis] = box.max[axis] + 1;
+                            break;
                     }
                     try {
                         (void)checked_bounds(std::span<const Box<Real, Dim>>(broken));
