@@ -58,8 +58,7 @@ requires(Dim == 2 || Dim == 3) [[nodiscard]] bool scan_float_lanes(std::span<con
         std::memcpy(&high, bytes + i * sizeof(Box<float, Dim>) + high_offset, sizeof high);
         low_min[set] = low < low_min[set] ? low : low_min[set];
         high_max[set] = high > high_max[set] ? high : high_max[set];
-        const Floats max_at_min_lanes =
-            __builtin_shuffle(high, Masks{shift, shift + 1, shift + 2 < 4 ? shift + 2 : 3, 3});
+        const Floats max_at_min_lanes = {high[shift], high[shift + 1], high[3], high[3]};
         ordered &= low <= max_at_min_lanes;
     };
     std::size_t i = 0;
