@@ -14,6 +14,7 @@
 #include <span>
 
 #include "core/invalid_box.hpp"
+#include "cuts/float_lanes.hpp"
 #include "smb/box.hpp"
 #include "smb/errors.hpp"
 
@@ -42,8 +43,8 @@ struct SceneBounds {
 template <int Dim>
 requires(Dim == 2 || Dim == 3) [[nodiscard]] bool scan_float_lanes(std::span<const Box<float, Dim>> boxes,
                                                                    SceneBounds<float, Dim>& bounds) noexcept {
-    using Floats [[gnu::vector_size(16)]] = float;
-    using Masks [[gnu::vector_size(16)]] = std::int32_t;
+    using Floats = FloatLanes<4>::Floats;
+    using Masks = FloatLanes<4>::Masks;
     constexpr int shift = 4 - Dim;  // the lane of max[0] in `high`
     constexpr std::size_t high_offset = sizeof(Box<float, Dim>) - sizeof(Floats);
     constexpr float inf = std::numeric_limits<float>::infinity();

@@ -334,10 +334,7 @@ private:
     /// The caller's box as the list holds it: itself where it is of floats (the origin is then
     /// zero and every coordinate finite), else shifted and rounded (held_box.hpp).
     [[nodiscard]] Held held_of(const Box<Input, Dim>& box) const noexcept {
-        if constexpr (kExact)
-            return box;
-        else
-            return held_box<Input, Dim>(box, origin_);
+        return held_as<float, Input, Dim>(box, origin_);
     }
 
     /// Held boxes at a and b overlap: true when their input boxes do too. `sure`: the floats
