@@ -4,6 +4,8 @@
 // from one detection to the next, and the pass that tests them all on the held boxes. A dropped
 // candidate becomes a tombstone, a pair of one position with itself, which the pass skips: the
 // list is written only where it changes, and closed up once tombstones are a thirty-second of it.
+// The candidates to drop are those of a vacant held box (vacant_held(), fat_boxes.hpp), which
+// the pass's own compares tell apart: no per-candidate lookup of which boxes changed.
 // The test of a pair of held boxes says whether they overlap, and whether they overlap by enough
 // to prove that the input boxes they hold overlap too (held_sure_margin(), held_box.hpp).
 
@@ -53,6 +55,10 @@ struct HeldLanes {
     [[nodiscard, gnu::always_inline]] std::uint32_t sure(float margin) const noexcept {
         return every_axis(((b_max - a_min) >= margin) & ((a_max - b_min) >= margin));
     }
+    /// 1 when a or b is vacant: on the first axis neither reaches the other.
+    [[nodiscard, gnu::always_inline]] std::uint32_t vacant() const noexcept {
+        return ~lane_bits<4>((a_min <= b_max) | (b_min <= a_max)) & 1U;
+    }
 };
 #endif
 
@@ -77,6 +83,19 @@ template <int Dim>
         sure_bits |= static_cast<std::uint32_t>(sure) << k;
     }
     return ((hit_bits + 1U) >> Dim) | (((sure_bits + 1U) >> Dim) << 1);
+}
+
+/// 1 when held box `a` or `b` is vacant (vacant_held(), fat_boxes.hpp), else 0. Two boxes with
+/// min <= max always reach each other on an axis from one side or the other (a.min <= b.max or
+/// b.min <= a.max); a vacant box, from +infinity to -infinity, reaches nothing from either.
+/// The same compares as overlap_bits()'s, which the compiler shares.
+template <int Dim>
+[[nodiscard, gnu::always_inline]] inline std::uint32_t vacant_bit(const Box<float, Dim>* a,
+                                                                  const Box<float, Dim>* b) noexcept {
+#if defined(__GNUC__)
+    if constexpr (Dim <= 3) return HeldLanes<Dim>(a, b).vacant();
+#endif
+    return static_cast<std::uint32_t>(!(a->min[0] <= b->max[0]) & !(b->min[0] <= a->max[0]));
 }
 
 /// 1 when held boxes `a` and `b` overlap, else 0: overlap_bits() without the sure bit, for held
@@ -157,21 +176,20 @@ public:
     }
 
     /// What a pass reads: the held boxes by position (one more of padding, for overlap_bits()),
-    /// the positions dropped in this detection (a bit each), the sure margin, the caller's index
+    /// those whose candidates are dropped in this detection vacant, the sure margin, the caller's index
     /// of each position, confirm(a, b, sure, retested), which says whether a pair the floats
     /// pass holds for the input too, counting in `retested` the pairs it tests again, and whether
     /// the held boxes are the input's own (`exact`: a held overlap is the pair, confirm is not asked).
     template <class Confirm, class Name>
     struct Pass {
         const Held* held;
-        const std::uint64_t* dirty;
         float sure_margin;
         std::span<const Name> name_of;  // the name each position's pairs are reported under
         const Confirm& confirm;
         bool exact;
     };
 
-    /// Tests every candidate, after dropping those of boxes marked in pass.dirty when `dropping`,
+    /// Tests every candidate, after dropping those of vacant boxes when `dropping`,
     /// and reports the pairs in the order of the list, whatever the number of threads. Returns the
     /// pairs tested again on the input.
     template <class Confirm, class Name, class Report>
@@ -267,28 +285,24 @@ private:
         Candidate* hit_list = worker.hits.data();
         std::uint8_t* sure_list = worker.sure.data();
         const Held* held = pass.held;
-        const std::uint64_t* dirty = pass.dirty;
         const float sure_margin = pass.sure_margin;
         std::size_t hits = 0;
         for (std::size_t i = first; i < last; ++i) {
             const Candidate candidate = candidates[i];
-            std::uint32_t keep = 1;
-            if (dropping) {
-                keep = static_cast<std::uint32_t>(~((dirty[candidate.a >> 6] >> (candidate.a & 63)) |
-                                                    (dirty[candidate.b >> 6] >> (candidate.b & 63))) &
-                                                  1U);
-                if (keep == 0 && candidate.a != candidate.b) {
-                    candidates[i] = Candidate{candidate.a, candidate.a};
-                    ++out.tombstones;
-                }
+            const Held* a = held + candidate.a;
+            const Held* b = held + candidate.b;
+            // A vacant box overlaps nothing, so its candidates never hit: only the drop is left.
+            if (dropping && vacant_bit<Dim>(a, b) != 0 && candidate.a != candidate.b) [[unlikely]] {
+                candidates[i] = Candidate{candidate.a, candidate.a};
+                ++out.tombstones;
             }
             hit_list[hits] = candidate;
             if constexpr (exact) {
-                hits += keep & overlap_bit<Dim>(held + candidate.a, held + candidate.b);
+                hits += overlap_bit<Dim>(a, b);
             } else {
-                const std::uint32_t bits = overlap_bits<Dim>(held + candidate.a, held + candidate.b, sure_margin);
+                const std::uint32_t bits = overlap_bits<Dim>(a, b, sure_margin);
                 sure_list[hits] = static_cast<std::uint8_t>(bits >> 1);
-                hits += keep & bits;
+                hits += bits & 1U;
             }
             if (hits == kRun) {
                 pairs_of_hits<exact>(pass, hits, worker, out, emit);

@@ -136,8 +136,8 @@ public:
         std::size_t bytes = cells_.bytes_held() + (fat_.capacity() + held_.capacity()) * sizeof(Held) +
                             (slot_of_.capacity() + position_of_.capacity() + moved_.capacity() + fresh_.capacity()) *
                                 sizeof(std::uint32_t) +
-                            state_.capacity() + gone_.capacity() * sizeof(Position) +
-                            dirty_.capacity() * sizeof(std::uint64_t) + names_.bytes_held() + candidates_.bytes_held();
+                            state_.capacity() + gone_.capacity() * sizeof(Position) + names_.bytes_held() +
+                            candidates_.bytes_held();
         return bytes + scans_.bytes_held([](const Scan& scan) {
             return (scan.fresh.capacity() + scan.gone.capacity()) * sizeof(Position);
         });
@@ -177,7 +177,6 @@ private:
         candidates_.renumber(position_of_);
         gather_held();
         state_.assign(n, 0);
-        dirty_.assign((n + 63) / 64, 0);
         moved_.clear();
         fresh_.clear();
         rebuilt_boxes_ = n;
@@ -260,17 +259,17 @@ private:
             state |= kMoved | kFresh;
         }
         refreshed_ = fresh_.size();
-        const bool newly_gone = !gone_.empty();
-        resize_with_slack(dirty_, (slot_of_.size() + 63) / 64);
-        for (const Position p : fresh_) dirty_[p >> 6] |= std::uint64_t{1} << (p & 63);
-        for (const Position p : gone_) dirty_[p >> 6] |= std::uint64_t{1} << (p & 63);
+        // The candidates of fresh and gone boxes are dropped: their held boxes vacant while the
+        // candidates are tested, the fresh ones' read again after.
+        const bool dropping = !fresh_.empty() || !gone_.empty();
+        for (const Position p : fresh_) held_[p] = vacant_held<Dim>();
+        for (const Position p : gone_) held_[p] = vacant_held<Dim>();
         profile.containment_seconds += phase.lap();
 
-        test_candidates(report, !fresh_.empty() || newly_gone);
+        test_candidates(report, dropping);
+        for (const Position p : fresh_) held_[p] = held_of(input_[slot_of_[p]]);
         for (const Position p : fresh_) find_candidates_of(p, report);
         for (const Position p : fresh_) state_[p] &= static_cast<std::uint8_t>(~(kFresh | kDone));
-        for (const Position p : fresh_) dirty_[p >> 6] = 0;
-        for (const Position p : gone_) dirty_[p >> 6] = 0;
         profile.check_seconds += phase.seconds();
         return Outcome::kept;
     }
@@ -351,7 +350,7 @@ private:
             report(names_(a, slot_of_), names_(b, slot_of_));
     }
 
-    /// Tests every candidate (candidate_list.hpp), after dropping those of boxes marked in dirty_
+    /// Tests every candidate (candidate_list.hpp), after dropping those of vacant held boxes
     /// when `dropping`, and reports the pairs in the order of the list.
     template <class Report>
     void test_candidates(Report& report, bool dropping) {
@@ -359,8 +358,8 @@ private:
             return confirmed(a, b, sure, retested);
         };
         auto test_named = [&]<class Name>(std::span<const Name> names) {
-            const typename Candidates::template Pass<decltype(confirm), Name> pass{
-                held_.data(), dirty_.data(), sure_margin_, names, confirm, kExact};
+            const typename Candidates::template Pass<decltype(confirm), Name> pass{held_.data(), sure_margin_, names,
+                                                                                   confirm, kExact};
             retested_ += candidates_.test(pass, dropping, threads_, report);
         };
         if (names_.named())
@@ -415,7 +414,6 @@ private:
     std::vector<Position> fresh_;       // positions with kFresh, in order
     Candidates candidates_;             // pairs of positions whose fat boxes overlap
     std::vector<Position> gone_;        // positions whose slot left the array in this detection
-    std::vector<std::uint64_t> dirty_;  // per position, a bit: fresh or gone in this detection
     int threads_ = 1;
     PerThread<Scan> scans_;
 };
