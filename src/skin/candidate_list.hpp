@@ -49,29 +49,41 @@ struct HeldLanes {
     [[nodiscard, gnu::always_inline]] static std::uint32_t every_axis(FloatLanes<4>::Masks mask) noexcept {
         return ((lane_bits<4>(mask) & all) + 1U) >> Dim;
     }
-    [[nodiscard, gnu::always_inline]] std::uint32_t hit() const noexcept {
-        return every_axis((a_min <= b_max) & (b_min <= a_max));
+    /// Bit 0 of candidate_bits(), and its bit 2: a or b is vacant, on the first axis neither
+    /// reaches the other. One pair of compares for both.
+    [[nodiscard, gnu::always_inline]] std::uint32_t hit_and_vacant() const noexcept {
+        const FloatLanes<4>::Masks reach = a_min <= b_max;
+        const FloatLanes<4>::Masks reached = b_min <= a_max;
+        return every_axis(reach & reached) | ((~lane_bits<4>(reach | reached) & 1U) << 2);
     }
     [[nodiscard, gnu::always_inline]] std::uint32_t sure(float margin) const noexcept {
         return every_axis(((b_max - a_min) >= margin) & ((a_max - b_min) >= margin));
     }
-    /// 1 when a or b is vacant: on the first axis neither reaches the other.
-    [[nodiscard, gnu::always_inline]] std::uint32_t vacant() const noexcept {
-        return ~lane_bits<4>((a_min <= b_max) | (b_min <= a_max)) & 1U;
-    }
 };
 #endif
 
-/// Bit 0: held boxes `a` and `b` overlap; bit 1: they overlap by at least `sure_margin` on
-/// every axis, which proves that the input boxes overlap too. Four lanes at a time where GCC's
-/// vector extensions are at hand (HeldLanes), so that no branch depends on the answer.
-template <int Dim>
-[[nodiscard, gnu::always_inline]] inline std::uint32_t overlap_bits(const Box<float, Dim>* a, const Box<float, Dim>* b,
-                                                                    float sure_margin) noexcept {
+/// What the pass over the candidates learns of held boxes `a` and `b`:
+/// - bit 0 (kHitBit): they overlap;
+/// - bit 1 (kSureBit, only `with_sure`): they overlap by at least `sure_margin` on every axis,
+///   which proves that the input boxes overlap too;
+/// - bit 2 (kVacantBit): a or b is vacant (vacant_held(), fat_boxes.hpp). Two boxes with
+///   min <= max always reach each other on an axis from one side or the other (a.min <= b.max
+///   or b.min <= a.max); a vacant box, from +infinity to -infinity, reaches nothing from either,
+///   and overlaps nothing.
+/// Four lanes at a time where GCC's vector extensions are at hand (HeldLanes), so that no branch
+/// depends on the answer.
+inline constexpr std::uint32_t kHitBit = 1;
+inline constexpr std::uint32_t kSureBit = 2;
+inline constexpr std::uint32_t kVacantBit = 4;
+template <int Dim, bool with_sure>
+[[nodiscard, gnu::always_inline]] inline std::uint32_t candidate_bits(const Box<float, Dim>* a,
+                                                                      const Box<float, Dim>* b,
+                                                                      float sure_margin) noexcept {
 #if defined(__GNUC__)
     if constexpr (Dim <= 3) {
         const HeldLanes<Dim> lanes(a, b);
-        return lanes.hit() | (lanes.sure(sure_margin) << 1);
+        if constexpr (with_sure) return lanes.hit_and_vacant() | (lanes.sure(sure_margin) << 1);
+        return lanes.hit_and_vacant();
     }
 #endif
     std::uint32_t hit_bits = 0;
@@ -82,31 +94,17 @@ template <int Dim>
         hit_bits |= static_cast<std::uint32_t>(hit) << k;
         sure_bits |= static_cast<std::uint32_t>(sure) << k;
     }
-    return ((hit_bits + 1U) >> Dim) | (((sure_bits + 1U) >> Dim) << 1);
+    const bool vacant = !(a->min[0] <= b->max[0]) && !(b->min[0] <= a->max[0]);
+    std::uint32_t bits = ((hit_bits + 1U) >> Dim) | (static_cast<std::uint32_t>(vacant) << 2);
+    if constexpr (with_sure) bits |= ((sure_bits + 1U) >> Dim) << 1;
+    return bits;
 }
 
-/// 1 when held box `a` or `b` is vacant (vacant_held(), fat_boxes.hpp), else 0. Two boxes with
-/// min <= max always reach each other on an axis from one side or the other (a.min <= b.max or
-/// b.min <= a.max); a vacant box, from +infinity to -infinity, reaches nothing from either.
-/// The same compares as overlap_bits()'s, which the compiler shares.
+/// Bits 0 and 1 of candidate_bits(): one pair tested on its own.
 template <int Dim>
-[[nodiscard, gnu::always_inline]] inline std::uint32_t vacant_bit(const Box<float, Dim>* a,
-                                                                  const Box<float, Dim>* b) noexcept {
-#if defined(__GNUC__)
-    if constexpr (Dim <= 3) return HeldLanes<Dim>(a, b).vacant();
-#endif
-    return static_cast<std::uint32_t>(!(a->min[0] <= b->max[0]) & !(b->min[0] <= a->max[0]));
-}
-
-/// 1 when held boxes `a` and `b` overlap, else 0: overlap_bits() without the sure bit, for held
-/// boxes that are the input's own.
-template <int Dim>
-[[nodiscard, gnu::always_inline]] inline std::uint32_t overlap_bit(const Box<float, Dim>* a,
-                                                                   const Box<float, Dim>* b) noexcept {
-#if defined(__GNUC__)
-    if constexpr (Dim <= 3) return HeldLanes<Dim>(a, b).hit();
-#endif
-    return overlap_bits<Dim>(a, b, 0.0F) & 1U;
+[[nodiscard, gnu::always_inline]] inline std::uint32_t overlap_bits(const Box<float, Dim>* a, const Box<float, Dim>* b,
+                                                                    float sure_margin) noexcept {
+    return candidate_bits<Dim, true>(a, b, sure_margin) & (kHitBit | kSureBit);
 }
 
 template <int Dim>
@@ -175,7 +173,7 @@ public:
         }
     }
 
-    /// What a pass reads: the held boxes by position (one more of padding, for overlap_bits()),
+    /// What a pass reads: the held boxes by position (one more of padding, for candidate_bits()),
     /// those whose candidates are dropped in this detection vacant, the sure margin, the caller's index
     /// of each position, confirm(a, b, sure, retested), which says whether a pair the floats
     /// pass holds for the input too, counting in `retested` the pairs it tests again, and whether
@@ -291,19 +289,15 @@ private:
             const Candidate candidate = candidates[i];
             const Held* a = held + candidate.a;
             const Held* b = held + candidate.b;
+            const std::uint32_t bits = candidate_bits<Dim, !exact>(a, b, sure_margin);
             // A vacant box overlaps nothing, so its candidates never hit: only the drop is left.
-            if (dropping && vacant_bit<Dim>(a, b) != 0 && candidate.a != candidate.b) [[unlikely]] {
+            if (dropping && (bits & kVacantBit) != 0 && candidate.a != candidate.b) [[unlikely]] {
                 candidates[i] = Candidate{candidate.a, candidate.a};
                 ++out.tombstones;
             }
             hit_list[hits] = candidate;
-            if constexpr (exact) {
-                hits += overlap_bit<Dim>(a, b);
-            } else {
-                const std::uint32_t bits = overlap_bits<Dim>(a, b, sure_margin);
-                sure_list[hits] = static_cast<std::uint8_t>(bits >> 1);
-                hits += bits & 1U;
-            }
+            if constexpr (!exact) sure_list[hits] = static_cast<std::uint8_t>((bits & kSureBit) >> 1);
+            hits += bits & kHitBit;
             if (hits == kRun) {
                 pairs_of_hits<exact>(pass, hits, worker, out, emit);
                 hits = 0;

@@ -72,7 +72,7 @@ template <int Dim>
 
 /// The held box of a position whose candidates are dropped in this detection: from +infinity
 /// to -infinity on every axis, so that it overlaps nothing and the pass over the candidates
-/// tells its candidates apart by their compares alone (vacant_bit(), candidate_list.hpp).
+/// tells its candidates apart by their compares alone (candidate_bits(), candidate_list.hpp).
 template <int Dim>
 [[nodiscard]] Box<float, Dim> vacant_held() noexcept {
     Box<float, Dim> vacant;

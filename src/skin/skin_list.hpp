@@ -156,7 +156,7 @@ private:
         rebuilt_ = true;
         const std::size_t n = input_.size();
         // held_ serves as the fat boxes by slot until the positions are known.
-        resize_for_overwrite(held_, n + 1);  // and one box of padding for overlap_bit()
+        resize_for_overwrite(held_, n + 1);  // and one box of padding for candidate_bits()
         for (std::size_t slot = 0; slot < n; ++slot) held_[slot] = fattened(held_of(input_[slot]), skin_);
         cells_.forget_slots_from(n);
         typename Candidates::Collector collect = candidates_.rebuild(candidate_cap(n));

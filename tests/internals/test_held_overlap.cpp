@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
-// The skin list's test of a pair of held boxes (src/skin/candidate_list.hpp): overlap_bit() and
-// overlap_bits() against the closed overlap of smb/box.hpp, and vacant_bit(), by which the pass
-// over the candidates finds those to drop: never set for two boxes with min <= max (touching,
-// flat, nested, far apart), always set where either box is vacant_held(), whose pairs never hit.
+// The skin list's test of a pair of held boxes (src/skin/candidate_list.hpp): candidate_bits()'s
+// hit bit, with and without the sure bit, against the closed overlap of smb/box.hpp, and its
+// vacant bit, by which the pass over the candidates finds those to drop: never set for two boxes
+// with min <= max (touching, flat, nested, far apart), always set where either box is
+// vacant_held(), whose pairs never hit.
 
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <random>
 #include <utility>
 #include <vector>
@@ -45,9 +47,11 @@ void expect_bits_of_every_pair() {
         for (std::size_t j = 0; j < n; ++j) {
             const bool expected = overlaps(boxes[i], boxes[j]);
             overlapping += expected ? 1 : 0;
-            ASSERT_EQ(overlap_bit<Dim>(&boxes[i], &boxes[j]), expected ? 1U : 0U) << i << ' ' << j;
-            ASSERT_EQ(overlap_bits<Dim>(&boxes[i], &boxes[j], 0.0F) & 1U, expected ? 1U : 0U) << i << ' ' << j;
-            ASSERT_EQ(vacant_bit<Dim>(&boxes[i], &boxes[j]), 0U) << i << ' ' << j;
+            const std::uint32_t bits = candidate_bits<Dim, false>(&boxes[i], &boxes[j], 0.0F);
+            const std::uint32_t sure_bits = candidate_bits<Dim, true>(&boxes[i], &boxes[j], 0.0F);
+            ASSERT_EQ(bits & kHitBit, expected ? kHitBit : 0U) << i << ' ' << j;
+            ASSERT_EQ(sure_bits & kHitBit, expected ? kHitBit : 0U) << i << ' ' << j;
+            ASSERT_EQ((bits | sure_bits) & kVacantBit, 0U) << i << ' ' << j;
         }
     }
     // Neither all nor none: the lattice makes both kinds (and the touching ones among them).
@@ -61,9 +65,8 @@ void expect_bits_of_every_pair() {
         boxes[v] = vacant_held<Dim>();
         for (std::size_t j = 0; j < n; ++j) {
             for (const auto& [a, b] : {std::pair{v, j}, std::pair{j, v}}) {
-                ASSERT_EQ(vacant_bit<Dim>(&boxes[a], &boxes[b]), 1U) << a << ' ' << b;
-                ASSERT_EQ(overlap_bit<Dim>(&boxes[a], &boxes[b]), 0U) << a << ' ' << b;
-                ASSERT_EQ(overlap_bits<Dim>(&boxes[a], &boxes[b], 0.0F), 0U) << a << ' ' << b;
+                ASSERT_EQ((candidate_bits<Dim, false>(&boxes[a], &boxes[b], 0.0F)), kVacantBit) << a << ' ' << b;
+                ASSERT_EQ((candidate_bits<Dim, true>(&boxes[a], &boxes[b], 0.0F)), kVacantBit) << a << ' ' << b;
             }
         }
         boxes[v] = kept;
