@@ -11,6 +11,7 @@ Needs matplotlib (Debian's python3-matplotlib).
 
 import argparse
 import csv
+import math
 import os
 
 import matplotlib
@@ -59,9 +60,14 @@ def main():
         axes.barh(ys, xs, height=height, label=label, left=0)
     axes.axvline(1.0, color="black", linewidth=1)
     axes.set_xscale("log")
-    axes.set_xlim(0.25, 4)
-    axes.set_xticks([0.25, 0.5, 1, 2, 4])
-    axes.set_xticklabels(["0.25×", "0.5×", "1×", "2×", "4×"])
+    # Wide enough for the largest ratio (the skin against the grid rebuilt every step).
+    top = 4.0
+    while top < max(ratios.values()) * 1.05:
+        top *= 2
+    ticks = [0.25 * 2**k for k in range(int(round(math.log2(top / 0.25))) + 1)]
+    axes.set_xlim(0.25, top)
+    axes.set_xticks(ticks)
+    axes.set_xticklabels([f"{tick:g}×" for tick in ticks])
     axes.set_yticks(range(len(scenes)))
     axes.set_yticklabels(scenes)
     axes.invert_yaxis()
