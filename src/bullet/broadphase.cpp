@@ -12,6 +12,7 @@
 #include <span>
 #include <string>
 
+#include "core/held_box.hpp"
 #include "core/tuning.hpp"
 
 namespace smb::bullet {
@@ -52,8 +53,8 @@ btBroadphaseProxy* Broadphase::Impl::createProxy(const btVector3& aabbMin, const
     }
     const std::uint32_t id = free_ids_.back();
     if (boxes_.size() <= id) {
-        boxes_.resize(id + 1, detail::empty_box());
-        fat_boxes_.resize(id + 1, detail::empty_box());
+        boxes_.resize(id + 1, smb::detail::empty_float_box<3>());
+        fat_boxes_.resize(id + 1, smb::detail::empty_float_box<3>());
         fat_since_.resize(id + 1, 0);
         filters_.resize(id + 1);
         marks_.resize(id + 1, 0);
@@ -95,7 +96,7 @@ void Broadphase::Impl::destroyProxy(btBroadphaseProxy* proxy, btDispatcher* disp
     retired_ids_.reserve(retired_ids_.size() + 1);
     world_.remove(id);
     retired_ids_.push_back(id);
-    boxes_[id] = detail::empty_box();
+    boxes_[id] = smb::detail::empty_float_box<3>();
     mark_changed(id);
     own_proxy.alive = false;
     marks_[id] &= static_cast<std::uint8_t>(~detail::alive_mark);

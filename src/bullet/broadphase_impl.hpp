@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <vector>
 
@@ -78,12 +77,6 @@ inline constexpr std::uint8_t alive_mark = 16;
         if (inner.min[k] < outer.min[k] || inner.max[k] > outer.max[k]) return false;
     }
     return true;
-}
-
-/// A box that overlaps no box (min > max on every axis): a destroyed proxy's.
-[[nodiscard]] inline Box<float, 3> empty_box() noexcept {
-    constexpr float inf = std::numeric_limits<float>::infinity();
-    return Box<float, 3>{{inf, inf, inf}, {-inf, -inf, -inf}};
 }
 
 inline void erase_partner(std::vector<std::uint32_t>& partners, std::uint32_t id) {

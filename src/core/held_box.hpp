@@ -23,6 +23,17 @@
 
 namespace smb::detail {
 
+/// A float box from +infinity to -infinity on every axis: it overlaps no box, itself included,
+/// and on no axis does it reach a box, or a box reach it, from either side. Bullet's destroyed
+/// proxies and the skin list's vacant positions (skin/candidate_list.hpp) hold it.
+template <int Dim>
+[[nodiscard]] inline Box<float, Dim> empty_float_box() noexcept {
+    Box<float, Dim> empty;
+    empty.min.fill(std::numeric_limits<float>::infinity());
+    empty.max.fill(-std::numeric_limits<float>::infinity());
+    return empty;
+}
+
 /// The nearest float to `value`, or the largest finite float of its sign beyond their range
 /// (where a plain conversion would be undefined).
 template <std::floating_point Input>

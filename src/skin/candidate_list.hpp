@@ -4,7 +4,7 @@
 // from one detection to the next, and the pass that tests them all on the held boxes. A dropped
 // candidate becomes a tombstone, a pair of one position with itself, which the pass skips: the
 // list is written only where it changes, and closed up once tombstones are a thirty-second of it.
-// The candidates to drop are those of a vacant held box (vacant_held(), fat_boxes.hpp), which
+// The candidates to drop are those of a vacant held box (empty_float_box(), held_box.hpp), which
 // the pass's own compares tell apart: no per-candidate lookup of which boxes changed.
 // The test of a pair of held boxes says whether they overlap, and whether they overlap by enough
 // to prove that the input boxes they hold overlap too (held_sure_margin(), held_box.hpp).
@@ -66,7 +66,7 @@ struct HeldLanes {
 /// - bit 0 (kHitBit): they overlap;
 /// - bit 1 (kSureBit, only `with_sure`): they overlap by at least `sure_margin` on every axis,
 ///   which proves that the input boxes overlap too;
-/// - bit 2 (kVacantBit): a or b is vacant (vacant_held(), fat_boxes.hpp). Two boxes with
+/// - bit 2 (kVacantBit): a or b is vacant (empty_float_box(), held_box.hpp). Two boxes with
 ///   min <= max always reach each other on an axis from one side or the other (a.min <= b.max
 ///   or b.min <= a.max); a vacant box, from +infinity to -infinity, reaches nothing from either,
 ///   and overlaps nothing.

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <span>
 
 #include "core/held_box.hpp"
@@ -68,17 +67,6 @@ template <int Dim>
         fat.max[k] = float_above(static_cast<double>(held.max[k]) + skin);
     }
     return fat;
-}
-
-/// The held box of a position whose candidates are dropped in this detection: from +infinity
-/// to -infinity on every axis, so that it overlaps nothing and the pass over the candidates
-/// tells its candidates apart by their compares alone (candidate_bits(), candidate_list.hpp).
-template <int Dim>
-[[nodiscard]] Box<float, Dim> vacant_held() noexcept {
-    Box<float, Dim> vacant;
-    vacant.min.fill(std::numeric_limits<float>::infinity());
-    vacant.max.fill(-std::numeric_limits<float>::infinity());
-    return vacant;
 }
 
 template <int Dim>

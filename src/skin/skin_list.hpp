@@ -259,11 +259,11 @@ private:
             state |= kMoved | kFresh;
         }
         refreshed_ = fresh_.size();
-        // The candidates of fresh and gone boxes are dropped: their held boxes vacant while the
-        // candidates are tested, the fresh ones' read again after.
+        // The candidates of fresh and gone boxes are dropped: their held boxes vacant (empty)
+        // while the candidates are tested, the fresh ones' read again after.
         const bool dropping = !fresh_.empty() || !gone_.empty();
-        for (const Position p : fresh_) held_[p] = vacant_held<Dim>();
-        for (const Position p : gone_) held_[p] = vacant_held<Dim>();
+        for (const Position p : fresh_) held_[p] = empty_float_box<Dim>();
+        for (const Position p : gone_) held_[p] = empty_float_box<Dim>();
         profile.containment_seconds += phase.lap();
 
         test_candidates(report, dropping);

@@ -3,7 +3,7 @@
 // hit bit, with and without the sure bit, against the closed overlap of smb/box.hpp, and its
 // vacant bit, by which the pass over the candidates finds those to drop: never set for two boxes
 // with min <= max (touching, flat, nested, far apart), always set where either box is
-// vacant_held(), whose pairs never hit.
+// empty_float_box(), whose pairs never hit.
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/held_box.hpp"
 #include "skin/candidate_list.hpp"
-#include "skin/fat_boxes.hpp"
 #include "smb/box.hpp"
 
 namespace smb::detail {
@@ -62,7 +62,7 @@ void expect_bits_of_every_pair() {
     // candidates are tested: every pair with it is vacant and none hits.
     for (std::size_t v = 0; v < n; ++v) {
         const Box<float, Dim> kept = boxes[v];
-        boxes[v] = vacant_held<Dim>();
+        boxes[v] = empty_float_box<Dim>();
         for (std::size_t j = 0; j < n; ++j) {
             for (const auto& [a, b] : {std::pair{v, j}, std::pair{j, v}}) {
                 ASSERT_EQ((candidate_bits<Dim, false>(&boxes[a], &boxes[b], 0.0F)), kVacantBit) << a << ' ' << b;
